@@ -1,0 +1,52 @@
+# rktsph — top-level commands. Quick start: `make run`, then `make test`.
+BUILD_DIR ?= build
+BUILD_TYPE ?= Release
+CMAKE_FLAGS ?=
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+CASE ?= cases/bar1d-elastic/case.yaml
+RESULTS ?= results
+
+# Debian packages the build and the tests need (Debian 12).
+DEB_PACKAGES := build-essential cmake libeigen3-dev libyaml-cpp-dev libcli11-dev libfmt-dev \
+                libgtest-dev libgmock-dev libbenchmark-dev python3
+# Extra packages for the validation report (plots, browser check); not needed by `make test`.
+DEB_REPORT_PACKAGES := python3-matplotlib chromium
+
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+.PHONY: deps deps-report configure build run test bench validate format clean
+
+deps:
+	@missing=""; for p in $(DEB_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  echo "Installing Debian packages:$$missing"; \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; \
+	else echo "All build dependencies present."; fi
+
+deps-report: deps
+	@missing=""; for p in $(DEB_REPORT_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; fi
+
+configure:
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(CMAKE_FLAGS)
+
+build: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+run: deps build
+	$(BUILD_DIR)/rktsph run $(CASE) -o $(RESULTS)/$(notdir $(patsubst %/,%,$(dir $(CASE))))
+	@echo
+	@echo "Results are in $(RESULTS)/$(notdir $(patsubst %/,%,$(dir $(CASE)))) (open series.pvd in ParaView)."
+
+test: deps build
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+bench: deps build
+	tools/run_benchmarks.sh $(BUILD_DIR)
+
+format:
+	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
+
+clean:
+	rm -rf $(BUILD_DIR)

@@ -1,0 +1,4 @@
+// Entry point shared by all benchmark files of bench/.
+#include <benchmark/benchmark.h>
+
+BENCHMARK_MAIN();

@@ -1,0 +1,222 @@
+#include "rktsph/boundary/boundary_conditions.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace rktsph {
+
+namespace {
+const char* axis_letter(int a) {
+  return a == 0 ? "x" : (a == 1 ? "y" : "z");
+}
+
+const std::vector<std::int32_t>& group_nodes(
+    const std::map<std::string, std::vector<std::int32_t>>& groups,
+    const BoundaryConditionSpec& condition) {
+  const auto it = groups.find(condition.group);
+  if (it == groups.end())
+    throw InputError(condition.where, "boundary_conditions.group", condition.group, "unknown group",
+                     "a group defined under 'groups' or a built-in group");
+  return it->second;
+}
+bool same_normal(const FaceNormal& a, const FaceNormal& b) {
+  return a.axis == b.axis && a.sign == b.sign;
+}
+
+// The outward normals shared by every node of a group: the face(s) the group lies on.
+std::vector<FaceNormal> common_normals(const std::vector<std::vector<FaceNormal>>& normals,
+                                       const std::vector<std::int32_t>& members) {
+  std::vector<FaceNormal> common = normals[static_cast<std::size_t>(members.front())];
+  for (std::int32_t node : members) {
+    const auto& own = normals[static_cast<std::size_t>(node)];
+    std::erase_if(common, [&](const FaceNormal& c) {
+      return std::none_of(own.begin(), own.end(),
+                          [&](const FaceNormal& o) { return same_normal(o, c); });
+    });
+  }
+  return common;
+}
+}  // namespace
+
+int BoundaryConditions::add_function(const TimeFunction& f) {
+  functions_.push_back(f);
+  return static_cast<int>(functions_.size()) - 1;
+}
+
+BoundaryConditions::BoundaryConditions(
+    const CaseDescription& description, const NodeSets& nodes,
+    const std::map<std::string, std::vector<std::int32_t>>& groups, const PhysicsModel& model) {
+  const int d = nodes.dimension;
+  const std::size_t n = nodes.sph_nodes.size();
+  const double tolerance = 1e-6 * nodes.spacing;
+  velocity_axes_.assign(n, 0);
+  projected_axes_.assign(n, 0);
+  face_normals_.assign(n, {});
+
+  // Mirror planes first: they decide which lattice faces are real faces.
+  std::vector<std::pair<int, std::int32_t>> rollers;  // (axis, node)
+  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+    if (condition.kind != BoundaryConditionSpec::Kind::Roller) continue;
+    const auto& members = group_nodes(groups, condition);
+    const int axis = condition.axis;
+    if (axis >= d)
+      throw InputError(condition.where, "boundary_conditions.roller", axis_letter(axis),
+                       "axis beyond the case dimension", d == 1 ? "x" : "x, y");
+    const double plane = nodes.sph_nodes.position[axis][members.front()];
+    for (std::int32_t node : members)
+      if (std::abs(nodes.sph_nodes.position[axis][node] - plane) > tolerance)
+        throw InputError(condition.where, "boundary_conditions.group", condition.group,
+                         fmt::format("a roller needs its nodes on one plane {} = const, but they "
+                                     "span {} = {} .. {}",
+                                     axis_letter(axis), axis_letter(axis), plane,
+                                     nodes.sph_nodes.position[axis][node]),
+                         "a group lying on one lattice line (e.g. an edge group)");
+    if (condition.mirror) {
+      const bool known =
+          std::any_of(mirror_planes_.begin(), mirror_planes_.end(), [&](const MirrorPlane& m) {
+            return m.axis == axis && std::abs(m.coordinate - plane) <= tolerance;
+          });
+      if (!known) mirror_planes_.push_back(MirrorPlane{axis, plane});
+    }
+    for (std::int32_t node : members)
+      rollers.emplace_back(axis, node);
+  }
+
+  // Faces: lattice directions with no neighbour node, unless a mirror plane closes them.
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int a = 0; a < d; ++a)
+      for (int sign : {-1, 1}) {
+        LatticeIndex neighbour = nodes.node_index[i];
+        neighbour[a] += sign;
+        if (nodes.node_at(neighbour) >= 0) continue;
+        const double x = nodes.sph_nodes.position[a][i];
+        const bool mirrored =
+            std::any_of(mirror_planes_.begin(), mirror_planes_.end(), [&](const MirrorPlane& m) {
+              return m.axis == a && std::abs(m.coordinate - x) <= tolerance;
+            });
+        if (!mirrored) face_normals_[i].push_back(FaceNormal{a, sign});
+      }
+  }
+
+  // Which velocity components are imposed where, and on which faces: a velocity condition acts
+  // on the face its group lies on; the node's other faces stay traction-free. This matters at a
+  // corner where a fixed face meets a free one: treating the free face's traction there as a
+  // reaction gives a growing corner mode (found by the step-matrix test, docs/theory.md §5.1).
+  std::vector<std::vector<FaceNormal>> velocity_faces(n);
+  for (const auto& [axis, node] : rollers)
+    velocity_axes_[node] |= static_cast<std::uint8_t>(1u << axis);
+  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+    const auto& members = group_nodes(groups, condition);
+    std::uint8_t axes = 0;
+    if (condition.kind == BoundaryConditionSpec::Kind::Fixed)
+      axes = static_cast<std::uint8_t>((1u << d) - 1);
+    if (condition.kind == BoundaryConditionSpec::Kind::Velocity)
+      for (int a = 0; a < d; ++a)
+        if (condition.velocity[a]) axes |= static_cast<std::uint8_t>(1u << a);
+    if (axes == 0) continue;
+    const std::vector<FaceNormal> faces = common_normals(face_normals_, members);
+    for (std::int32_t node : members) {
+      velocity_axes_[node] |= axes;
+      // A group on no common face (a point, a region): all of its nodes' faces are driven.
+      const auto& driven = faces.empty() ? face_normals_[node] : faces;
+      for (const FaceNormal& f : driven)
+        velocity_faces[node].push_back(f);
+    }
+  }
+  auto is_driven = [&](std::int32_t node, const FaceNormal& normal) {
+    const auto& driven = velocity_faces[static_cast<std::size_t>(node)];
+    return std::any_of(driven.begin(), driven.end(),
+                       [&](const FaceNormal& f) { return same_normal(f, normal); });
+  };
+
+  // Stress constraints, weakest first: natural traction-free faces, roller shear, then tractions.
+  const int zero = add_function(TimeFunction::constant(0.0));
+  auto add_face_stress = [&](std::int32_t node, const FaceNormal& normal, int component,
+                             int function) {
+    // Traction t = sigma . n: on a face with outward normal sign*e_a, sigma_(a,c) = sign * t_c.
+    if (is_driven(node, normal) && ((velocity_axes_[node] >> component) & 1u))
+      return;  // a reaction on the driven face, not a traction
+    const int field = model.stress_field(normal.axis, component);
+    if (field >= 0)
+      stress_constraints_.push_back({node, field, function, static_cast<double>(normal.sign)});
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto node = static_cast<std::int32_t>(i);
+    for (const FaceNormal& normal : face_normals_[i]) {
+      for (int c = 0; c < d; ++c)
+        add_face_stress(node, normal, c, zero);
+      if (!(is_driven(node, normal) && ((velocity_axes_[i] >> normal.axis) & 1u)))
+        projected_axes_[i] |= static_cast<std::uint8_t>(1u << normal.axis);
+    }
+  }
+  for (const auto& [axis, node] : rollers)
+    for (int c = 0; c < d; ++c)
+      if (c != axis) {
+        const int field = model.stress_field(axis, c);
+        if (field >= 0) stress_constraints_.push_back({node, field, zero, 1.0});
+      }
+
+  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+    if (condition.kind != BoundaryConditionSpec::Kind::Traction) continue;
+    const auto& members = group_nodes(groups, condition);
+    // The face the traction acts on: the outward normal shared by every node of the group.
+    const std::vector<FaceNormal> common = common_normals(face_normals_, members);
+    if (common.size() != 1)
+      throw InputError(condition.where, "boundary_conditions.group", condition.group,
+                       common.empty() ? "the group's nodes share no free face, so the traction "
+                                        "has no face to act on"
+                                      : "the group's nodes share more than one face normal",
+                       "a group of nodes on one straight free face (e.g. an edge group)");
+    for (int c = 0; c < d; ++c) {
+      if (!condition.traction[c]) continue;
+      const int function = add_function(*condition.traction[c]);
+      for (std::int32_t node : members)
+        add_face_stress(node, common.front(), c, function);
+    }
+  }
+
+  // Velocities: rollers, then fixed and imposed in the order written.
+  for (const auto& [axis, node] : rollers)
+    velocity_constraints_.push_back({node, model.velocity_field(axis), zero, 1.0});
+  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+    const auto& members = group_nodes(groups, condition);
+    if (condition.kind == BoundaryConditionSpec::Kind::Fixed) {
+      for (std::int32_t node : members)
+        for (int a = 0; a < d; ++a)
+          velocity_constraints_.push_back({node, model.velocity_field(a), zero, 1.0});
+    } else if (condition.kind == BoundaryConditionSpec::Kind::Velocity) {
+      for (int a = 0; a < d; ++a) {
+        if (!condition.velocity[a]) continue;
+        const int function = add_function(*condition.velocity[a]);
+        for (std::int32_t node : members)
+          velocity_constraints_.push_back({node, model.velocity_field(a), function, 1.0});
+      }
+    }
+  }
+}
+
+void BoundaryConditions::apply(double time, FieldArray& values,
+                               std::span<const std::int32_t> node_to_row) const {
+  // Evaluate each time function once per call.
+  double function_value[64];
+  std::vector<double> many;
+  double* value = function_value;
+  if (functions_.size() > 64) {
+    many.resize(functions_.size());
+    value = many.data();
+  }
+  for (std::size_t f = 0; f < functions_.size(); ++f)
+    value[f] = functions_[f](time);
+  auto row_of = [&](std::int32_t node) {
+    return node_to_row.empty() ? node : node_to_row[static_cast<std::size_t>(node)];
+  };
+  for (const auto* list : {&stress_constraints_, &velocity_constraints_})
+    for (const Constraint& c : *list) {
+      const std::int32_t row = row_of(c.node);
+      if (row >= 0) values(c.field, static_cast<std::size_t>(row)) = c.scale * value[c.function];
+    }
+}
+
+}  // namespace rktsph

@@ -1,0 +1,74 @@
+// Boundary conditions on SPH nodes (docs/theory.md §5.1): imposed velocities, fixed nodes,
+// rollers / symmetry planes (mirror images, prototype R3), tractions, and the natural
+// traction-free condition on every face that has no other condition.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "rktsph/case/case_description.hpp"
+#include "rktsph/core/field_array.hpp"
+#include "rktsph/geometry/node_sets.hpp"
+#include "rktsph/models/physics_model.hpp"
+#include "rktsph/sph/operators.hpp"
+
+namespace rktsph {
+
+/// An outward face normal along a lattice axis.
+struct FaceNormal {
+  int axis = 0;
+  int sign = 1;
+};
+
+class BoundaryConditions {
+ public:
+  /// Validates the case's conditions against the groups and the lattice (InputError at the
+  /// condition's line on any inconsistency) and compiles them into per-node constraints.
+  BoundaryConditions(const CaseDescription& description, const NodeSets& nodes,
+                     const std::map<std::string, std::vector<std::int32_t>>& groups,
+                     const PhysicsModel& model);
+
+  /// Mirror planes of the rollers with `mirror: true`; they enter every operator.
+  const std::vector<MirrorPlane>& mirror_planes() const { return mirror_planes_; }
+
+  /// Bit a set: node's stress increments are projected so that sigma_aa is kept (a face with
+  /// normal along a whose normal velocity is not imposed; prototype R2).
+  std::uint8_t projected_axes(std::int32_t node) const { return projected_axes_[node]; }
+
+  /// Outward normals of the faces a node lies on (lattice directions with no neighbour and no
+  /// mirror image).
+  const std::vector<FaceNormal>& face_normals(std::int32_t node) const {
+    return face_normals_[node];
+  }
+
+  /// Imposes every constraint at time t on `values`. Row of node n is n, or node_to_row[n] when
+  /// given (constraints of nodes with row -1 are skipped).
+  void apply(double time, FieldArray& values, std::span<const std::int32_t> node_to_row = {}) const;
+
+  /// True if velocity component `axis` of `node` is imposed.
+  bool velocity_imposed(std::int32_t node, int axis) const {
+    return (velocity_axes_[node] >> axis) & 1u;
+  }
+
+ private:
+  struct Constraint {
+    std::int32_t node;
+    int field;
+    int function;  // index into functions_
+    double scale;  // value = scale * functions_[function](t)
+  };
+  int add_function(const TimeFunction& f);
+
+  std::vector<MirrorPlane> mirror_planes_;
+  std::vector<std::vector<FaceNormal>> face_normals_;
+  std::vector<std::uint8_t> velocity_axes_;
+  std::vector<std::uint8_t> projected_axes_;
+  std::vector<TimeFunction> functions_;
+  std::vector<Constraint> stress_constraints_;    // applied first
+  std::vector<Constraint> velocity_constraints_;  // applied last: velocity wins
+};
+
+}  // namespace rktsph

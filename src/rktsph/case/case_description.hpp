@@ -1,0 +1,163 @@
+// The typed, validated description of one case, as read from a case file (YAML).
+//
+// Everything here is in SI units: m, s, kg, Pa, m/s. Stress is positive in tension; pore pressure
+// positive in compression. Every item keeps the SourceLocation of the key it came from so that
+// later stages (geometry, materials, boundary conditions) can report errors at the right line.
+#pragma once
+
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rktsph/boundary/time_function.hpp"
+#include "rktsph/core/error.hpp"
+#include "rktsph/sph/kernel_type.hpp"
+
+namespace rktsph {
+
+using Vec3 = std::array<double, 3>;
+
+enum class ModelKind { DrySolid, SaturatedVpw };  // "dry_solid" (V1), "saturated_vpw" (V3)
+enum class PlaneKind { Strain, Stress };          // 2D only; 1D is always the uniaxial bar
+
+/// A scalar parameter with the place it was written, for material blocks whose keys are
+/// validated by the material itself (each material knows its own parameters).
+struct Parameter {
+  double value = 0.0;
+  SourceLocation where;
+};
+
+/// Parameters of a block, by key. `where` is the location of the block itself.
+struct ParameterBlock {
+  std::string path;  ///< dotted key path of the block, e.g. "materials.soil"
+  SourceLocation where;
+  std::map<std::string, Parameter> values;
+  /// Non-numeric entries (e.g. "model: perzyna_von_mises"), by key.
+  std::map<std::string, std::pair<std::string, SourceLocation>> words;
+};
+
+struct ShapeSpec {
+  enum class Kind { Segment, Rectangle, Polygon };
+  Kind kind = Kind::Segment;
+  /// Segment: {from, to} in x. Rectangle: {min, max}. Polygon: vertices in order (either sense).
+  std::vector<Vec3> vertices;
+  std::string material;  ///< name of an entry of `materials`
+  SourceLocation where;
+};
+
+struct GeometrySpec {
+  double spacing = 0.0;  ///< lattice spacing dx [m], > 0
+  /// Shapes fill one common lattice; where shapes overlap, the later shape's material wins
+  /// (so a small shape after a large one makes a weak zone).
+  std::vector<ShapeSpec> shapes;
+  SourceLocation where;
+};
+
+struct GroupSpec {
+  enum class Kind { Edge, Box, Polygon, Point, All };
+  std::string name;
+  Kind kind = Kind::All;
+  std::string edge;   ///< Edge: "xmin", "xmax", "ymin" or "ymax" of the body's bounding box
+  Vec3 min{}, max{};  ///< Box (inclusive, with a tolerance of 1e-6 dx)
+  std::vector<Vec3> vertices;  ///< Polygon (boundary included)
+  Vec3 point{};                ///< Point: the node nearest to it
+  SourceLocation where;
+};
+
+struct BoundaryConditionSpec {
+  enum class Kind {
+    Velocity,  ///< imposed velocity components (those given), others free
+    Fixed,     ///< v = 0 (rough rigid wall)
+    Roller,    ///< v_n = 0, sigma_nt = 0 (smooth wall, = symmetry plane), mirror images
+    Traction,  ///< imposed traction components on the face (those given), others zero
+  };
+  Kind kind = Kind::Velocity;
+  std::string group;
+  std::array<std::optional<TimeFunction>, 3> velocity;  ///< Velocity: per component [m/s]
+  std::array<std::optional<TimeFunction>, 3> traction;  ///< Traction: per component [Pa]
+  int axis = 0;        ///< Roller: axis of the normal (0 = x, 1 = y)
+  bool mirror = true;  ///< Roller: fold mirror images into the operators (prototype R3)
+  SourceLocation where;
+};
+
+struct GravitySpec {
+  Vec3 acceleration{};                                ///< [m/s^2], e.g. (0, -9.81)
+  TimeFunction factor = TimeFunction::constant(1.0);  ///< dimensionless ramp (Q14)
+  SourceLocation where;
+};
+
+struct DampingSpec {
+  double coefficient = 0.0;  ///< xi [1/s], momentum source -xi v
+  double start = 0.0;        ///< [s]
+  double end = 1e300;        ///< [s], exclusive
+  SourceLocation where;
+};
+
+struct InitialConditionsSpec {
+  Vec3 velocity{};                          ///< uniform initial velocity [m/s]
+  std::optional<double> geostatic_surface;  ///< y of the free surface [m] for geostatic stress
+  std::optional<double> k0;                 ///< sigma_h / sigma_v; default nu/(1-nu)
+  SourceLocation where;
+};
+
+struct NumericsSpec {
+  KernelType kernel = KernelType::CubicSpline;
+  double h_over_dx = 0.75;          ///< prototype R1
+  int interpolation_order = 0;      ///< 0 = Shepard, 1 = (d+1) system
+  double courant = 0.5;             ///< C in dt = C dx / c_p
+  std::optional<double> time_step;  ///< fixed dt [s] overriding the Courant rule
+  bool frozen_flux_source = true;   ///< R5; false = additive coupling of the spec
+  double rk_substep_factor = 2.5;   ///< m = ceil(tau * lambda_src / factor)
+  int rk_max_substeps = 1000;
+  bool hourglass_filter = true;  ///< R6, default on in 2D, ignored in 1D
+  double hourglass_kappa = 0.1;
+  double hourglass_h_over_dx = 1.3;
+  double artificial_viscosity = 0.0;  ///< alpha of R7, 0 = off
+  SourceLocation where;
+};
+
+struct TimeSpec {
+  double end = 0.0;  ///< [s], > 0
+  long max_steps = 100000000;
+  SourceLocation where;
+};
+
+struct OutputSpec {
+  double interval = 0.0;        ///< field (VTU) output every `interval` s; 0 = first and last only
+  double probe_interval = 0.0;  ///< probes every `probe_interval` s; 0 = every step
+  std::vector<std::string> fields;  ///< empty = all fields of the model
+  SourceLocation where;
+};
+
+struct ProbeSpec {
+  enum class Reduction { Mean, Min, Max, MaxAbs };
+  std::string name;
+  std::string group;
+  std::vector<std::string> fields;  ///< e.g. "velocity_x", "stress_xx", "pore_pressure"
+  Reduction reduction = Reduction::Mean;
+  SourceLocation where;
+};
+
+struct CaseDescription {
+  std::string name;
+  std::string description;
+  std::string file;  ///< path of the case file it was read from
+  ModelKind model = ModelKind::DrySolid;
+  int dimension = 1;
+  PlaneKind plane = PlaneKind::Strain;
+  GeometrySpec geometry;
+  std::map<std::string, ParameterBlock> materials;
+  std::vector<GroupSpec> groups;
+  std::vector<BoundaryConditionSpec> boundary_conditions;
+  std::optional<GravitySpec> gravity;
+  std::optional<DampingSpec> damping;
+  InitialConditionsSpec initial;
+  NumericsSpec numerics;
+  TimeSpec time;
+  OutputSpec output;
+  std::vector<ProbeSpec> probes;
+};
+
+}  // namespace rktsph

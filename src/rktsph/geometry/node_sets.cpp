@@ -1,0 +1,264 @@
+#include "rktsph/geometry/node_sets.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rktsph {
+
+namespace {
+
+// Tolerance, in units of dx, for "on the lattice" and "on the boundary" decisions.
+constexpr double kLatticeTolerance = 1e-6;
+
+struct Box {
+  Vec3 min{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), 0.0};
+  Vec3 max{std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest(), 0.0};
+};
+
+Box bounding_box(const GeometrySpec& geometry, int dimension) {
+  Box box;
+  for (const ShapeSpec& shape : geometry.shapes)
+    for (const Vec3& vertex : shape.vertices)
+      for (int a = 0; a < dimension; ++a) {
+        box.min[a] = std::min(box.min[a], vertex[a]);
+        box.max[a] = std::max(box.max[a], vertex[a]);
+      }
+  return box;
+}
+
+double distance_to_segment(double px, double py, const Vec3& a, const Vec3& b) {
+  const double ex = b[0] - a[0], ey = b[1] - a[1];
+  const double length_squared = ex * ex + ey * ey;
+  double s = length_squared > 0.0 ? ((px - a[0]) * ex + (py - a[1]) * ey) / length_squared : 0.0;
+  s = std::clamp(s, 0.0, 1.0);
+  return std::hypot(px - (a[0] + s * ex), py - (a[1] + s * ey));
+}
+
+bool shape_contains(const ShapeSpec& shape, int dimension, const Vec3& x, double tolerance) {
+  switch (shape.kind) {
+    case ShapeSpec::Kind::Segment:
+      return x[0] >= shape.vertices[0][0] - tolerance && x[0] <= shape.vertices[1][0] + tolerance;
+    case ShapeSpec::Kind::Rectangle:
+      for (int a = 0; a < dimension; ++a)
+        if (x[a] < shape.vertices[0][a] - tolerance || x[a] > shape.vertices[1][a] + tolerance)
+          return false;
+      return true;
+    case ShapeSpec::Kind::Polygon:
+      return polygon_contains(shape.vertices, x[0], x[1], tolerance);
+  }
+  return false;
+}
+
+// Index of the last shape containing x (later shapes override earlier ones), or -1.
+int covering_shape(const GeometrySpec& geometry, int dimension, const Vec3& x, double tolerance) {
+  for (int s = static_cast<int>(geometry.shapes.size()) - 1; s >= 0; --s)
+    if (shape_contains(geometry.shapes[s], dimension, x, tolerance)) return s;
+  return -1;
+}
+
+void check_vertices_on_lattice(const GeometrySpec& geometry, int dimension, const Vec3& origin) {
+  const double dx = geometry.spacing;
+  for (const ShapeSpec& shape : geometry.shapes)
+    for (const Vec3& vertex : shape.vertices)
+      for (int a = 0; a < dimension; ++a) {
+        const double cells = (vertex[a] - origin[a]) / dx;
+        if (std::abs(cells - std::round(cells)) > kLatticeTolerance)
+          throw InputError(
+              shape.where, "geometry.shapes", fmt::format("{}", vertex[a]),
+              fmt::format("shape vertex coordinate is not on the lattice of spacing {} "
+                          "starting at {} (it is {:.6f} spacings from it)",
+                          dx, origin[a], cells),
+              "coordinates that differ from the smallest coordinate of all shapes by "
+              "a whole number of spacings");
+      }
+}
+
+}  // namespace
+
+bool polygon_contains(const std::vector<Vec3>& vertices, double x, double y, double tolerance) {
+  const std::size_t n = vertices.size();
+  for (std::size_t k = 0; k < n; ++k)
+    if (distance_to_segment(x, y, vertices[k], vertices[(k + 1) % n]) <= tolerance) return true;
+  // Even-odd ray casting towards +x.
+  bool inside = false;
+  for (std::size_t k = 0, previous = n - 1; k < n; previous = k++) {
+    const Vec3& a = vertices[k];
+    const Vec3& b = vertices[previous];
+    if ((a[1] > y) != (b[1] > y)) {
+      const double crossing = a[0] + (y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+      if (x < crossing) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+std::int32_t NodeSets::node_at(const LatticeIndex& index) const {
+  std::size_t flat = 0;
+  for (int a = dimension - 1; a >= 0; --a) {
+    if (index[a] < 0 || index[a] >= lattice_size[a]) return -1;
+    flat = flat * static_cast<std::size_t>(lattice_size[a]) + static_cast<std::size_t>(index[a]);
+  }
+  return node_lookup[flat];
+}
+
+NodeSets build_node_sets(const GeometrySpec& geometry, int dimension,
+                         const std::vector<std::string>& material_names) {
+  NodeSets nodes;
+  nodes.dimension = dimension;
+  nodes.spacing = geometry.spacing;
+  nodes.material_names = material_names;
+  nodes.sph_nodes.dimension = dimension;
+  nodes.stress_points.dimension = dimension;
+
+  const double dx = geometry.spacing;
+  const double tolerance = kLatticeTolerance * dx;
+  const Box box = bounding_box(geometry, dimension);
+  nodes.origin = box.min;
+  check_vertices_on_lattice(geometry, dimension, nodes.origin);
+  for (int a = 0; a < dimension; ++a)
+    nodes.lattice_size[a] =
+        static_cast<std::int32_t>(std::lround((box.max[a] - box.min[a]) / dx)) + 1;
+
+  auto material_of_shape = [&](int shape) {
+    const auto it =
+        std::find(material_names.begin(), material_names.end(), geometry.shapes[shape].material);
+    if (it == material_names.end())
+      throw InputError(geometry.shapes[shape].where, "geometry.shapes.material",
+                       geometry.shapes[shape].material, "unknown material",
+                       "a name defined under 'materials'");
+    return static_cast<std::int32_t>(it - material_names.begin());
+  };
+  auto lattice_position = [&](const LatticeIndex& index, double shift) {
+    Vec3 x{};
+    for (int a = 0; a < dimension; ++a)
+      x[a] = nodes.origin[a] + (index[a] + shift) * dx;
+    return x;
+  };
+
+  const std::int32_t nx = nodes.lattice_size[0];
+  const std::int32_t ny = dimension >= 2 ? nodes.lattice_size[1] : 1;
+  nodes.node_lookup.assign(static_cast<std::size_t>(nx) * ny, -1);
+  const double node_volume = std::pow(dx, dimension);
+  for (std::int32_t j = 0; j < ny; ++j)
+    for (std::int32_t i = 0; i < nx; ++i) {
+      const LatticeIndex index{i, j, 0};
+      const Vec3 x = lattice_position(index, 0.0);
+      const int shape = covering_shape(geometry, dimension, x, tolerance);
+      if (shape < 0) continue;
+      nodes.node_lookup[static_cast<std::size_t>(j) * nx + i] =
+          static_cast<std::int32_t>(nodes.sph_nodes.size());
+      nodes.sph_nodes.push_back(x, node_volume);
+      nodes.node_index.push_back(index);
+      nodes.node_material.push_back(material_of_shape(shape));
+    }
+
+  // A stress point sits at the centre of every lattice cell whose corners are all nodes and whose
+  // centre lies inside the body (the second test matters only for concave outlines).
+  const std::int32_t cells_y = dimension >= 2 ? ny - 1 : 1;
+  for (std::int32_t j = 0; j < cells_y; ++j)
+    for (std::int32_t i = 0; i + 1 < nx; ++i) {
+      bool complete = true;
+      for (std::int32_t dj = 0; dj <= (dimension >= 2 ? 1 : 0); ++dj)
+        for (std::int32_t di = 0; di <= 1; ++di)
+          if (nodes.node_at({i + di, j + dj, 0}) < 0) complete = false;
+      if (!complete) continue;
+      const LatticeIndex index{i, j, 0};
+      Vec3 centre = lattice_position(index, 0.5);
+      if (dimension < 2) centre[1] = 0.0;
+      const int shape = covering_shape(geometry, dimension, centre, tolerance);
+      if (shape < 0) continue;
+      nodes.stress_points.push_back(centre, node_volume);
+      nodes.stress_point_index.push_back(index);
+      nodes.stress_point_material.push_back(material_of_shape(shape));
+    }
+
+  if (nodes.sph_nodes.size() < 2)
+    throw InputError(geometry.where, "geometry.spacing", fmt::format("{}", dx),
+                     "the shapes hold fewer than two nodes at this spacing",
+                     "a spacing smaller than the shapes");
+  return nodes;
+}
+
+std::map<std::string, std::vector<std::int32_t>> select_groups(
+    const NodeSets& nodes, const std::vector<GroupSpec>& groups) {
+  std::map<std::string, std::vector<std::int32_t>> selected;
+  const PointCloud& points = nodes.sph_nodes;
+  const std::size_t n = points.size();
+  const double tolerance = kLatticeTolerance * nodes.spacing;
+
+  auto select_if = [&](auto&& predicate) {
+    std::vector<std::int32_t> members;
+    for (std::size_t i = 0; i < n; ++i)
+      if (predicate(i)) members.push_back(static_cast<std::int32_t>(i));
+    return members;
+  };
+  auto edge = [&](int axis, bool upper) {
+    const auto [lo, hi] =
+        std::minmax_element(points.position[axis].begin(), points.position[axis].end());
+    const double target = upper ? *hi : *lo;
+    return select_if(
+        [&](std::size_t i) { return std::abs(points.position[axis][i] - target) <= tolerance; });
+  };
+
+  selected["all"] = select_if([](std::size_t) { return true; });
+  selected["xmin"] = edge(0, false);
+  selected["xmax"] = edge(0, true);
+  if (nodes.dimension >= 2) {
+    selected["ymin"] = edge(1, false);
+    selected["ymax"] = edge(1, true);
+  }
+
+  for (const GroupSpec& group : groups) {
+    std::vector<std::int32_t> members;
+    switch (group.kind) {
+      case GroupSpec::Kind::All:
+        members = selected["all"];
+        break;
+      case GroupSpec::Kind::Edge: {
+        const int axis = group.edge[0] == 'x' ? 0 : 1;
+        members = edge(axis, group.edge.substr(1) == "max");
+        break;
+      }
+      case GroupSpec::Kind::Box:
+        members = select_if([&](std::size_t i) {
+          for (int a = 0; a < nodes.dimension; ++a)
+            if (points.position[a][i] < group.min[a] - tolerance ||
+                points.position[a][i] > group.max[a] + tolerance)
+              return false;
+          return true;
+        });
+        break;
+      case GroupSpec::Kind::Polygon:
+        members = select_if([&](std::size_t i) {
+          return polygon_contains(group.vertices, points.position[0][i], points.position[1][i],
+                                  tolerance);
+        });
+        break;
+      case GroupSpec::Kind::Point: {
+        std::size_t nearest = 0;
+        double best = std::numeric_limits<double>::max();
+        for (std::size_t i = 0; i < n; ++i) {
+          double distance_squared = 0.0;
+          for (int a = 0; a < nodes.dimension; ++a)
+            distance_squared += std::pow(points.position[a][i] - group.point[a], 2);
+          if (distance_squared < best) {
+            best = distance_squared;
+            nearest = i;
+          }
+        }
+        members = {static_cast<std::int32_t>(nearest)};
+        break;
+      }
+    }
+    if (members.empty())
+      throw InputError(group.where, "groups." + group.name, "", "the group selects no SPH node",
+                       "a selector that contains at least one node of the lattice");
+    selected[group.name] = std::move(members);
+  }
+  return selected;
+}
+
+}  // namespace rktsph

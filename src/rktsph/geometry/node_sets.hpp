@@ -1,0 +1,52 @@
+// Geometry to nodes: the SPH nodes on a square lattice of spacing dx (boundary nodes included) and
+// the stress points at the cell centres (2D) or mid-points (1D), docs/theory.md §3.1.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "rktsph/case/case_description.hpp"
+#include "rktsph/core/point_cloud.hpp"
+
+namespace rktsph {
+
+using LatticeIndex = std::array<std::int32_t, 3>;
+
+struct NodeSets {
+  int dimension = 1;
+  double spacing = 0.0;                               ///< dx [m]
+  Vec3 origin{};                                      ///< position of lattice index (0, 0, 0)
+  std::array<std::int32_t, 3> lattice_size{1, 1, 1};  ///< lattice extent, in nodes, per axis
+
+  PointCloud sph_nodes;
+  PointCloud stress_points;
+  std::vector<LatticeIndex> node_index;             ///< lattice index of each SPH node
+  std::vector<LatticeIndex> stress_point_index;     ///< index of the cell's lower corner node
+  std::vector<std::int32_t> node_material;          ///< index into `material_names`
+  std::vector<std::int32_t> stress_point_material;  ///< material covering the cell centre
+  std::vector<std::string> material_names;
+
+  /// SPH node at a lattice index, or -1 if there is none.
+  std::int32_t node_at(const LatticeIndex& index) const;
+
+  /// Dense lookup lattice -> node (size product of lattice_size), -1 where empty.
+  std::vector<std::int32_t> node_lookup;
+};
+
+/// Fills the shapes of `geometry` with nodes. Every shape vertex must be a lattice point so that
+/// the physical boundary carries nodes (InputError at the shape otherwise).
+NodeSets build_node_sets(const GeometrySpec& geometry, int dimension,
+                         const std::vector<std::string>& material_names);
+
+/// Node groups by name: the built-in ones (all, xmin, xmax, ymin, ymax) and those of the case.
+/// A group that selects no node is an InputError at its definition.
+std::map<std::string, std::vector<std::int32_t>> select_groups(
+    const NodeSets& nodes, const std::vector<GroupSpec>& groups);
+
+/// True if (x, y) lies inside the polygon or on its boundary (within `tolerance`).
+bool polygon_contains(const std::vector<Vec3>& vertices, double x, double y, double tolerance);
+
+}  // namespace rktsph

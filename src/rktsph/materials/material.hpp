@@ -1,0 +1,80 @@
+// A material seen at one material point: elastic constants, and (for viscoplastic materials) the
+// viscoplastic strain rate and internal-variable rates at a given stress. Materials know nothing
+// about SPH; that is why each one is tested alone on a single point (tests/materials/).
+//
+// Stress and strain are full 3D symmetric tensors in the order (xx, yy, zz, xy, yz, zx), tensor
+// (not engineering) shear components, tension positive (docs/theory.md §1.1).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace rktsph {
+
+using SymmetricTensor = std::array<double, 6>;  // xx, yy, zz, xy, yz, zx
+
+struct ElasticConstants {
+  double young_modulus = 0.0;  // E [Pa]
+  double poisson_ratio = 0.0;  // nu [-]
+  double lame_lambda() const {
+    return young_modulus * poisson_ratio / ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio));
+  }
+  double shear_modulus() const { return young_modulus / (2.0 * (1.0 + poisson_ratio)); }
+  double bulk_modulus() const { return young_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)); }
+  /// Constrained (oedometric) modulus lambda + 2G.
+  double constrained_modulus() const { return lame_lambda() + 2.0 * shear_modulus(); }
+  /// Plane-stress modulus E' = E / (1 - nu^2).
+  double plane_stress_modulus() const {
+    return young_modulus / (1.0 - poisson_ratio * poisson_ratio);
+  }
+};
+
+class Material {
+ public:
+  virtual ~Material() = default;
+
+  /// The name the case file uses for this model, e.g. "linear_elastic".
+  virtual std::string model_name() const = 0;
+  double density() const { return density_; }
+  const ElasticConstants& elastic() const { return elastic_; }
+
+  /// Number of internal variables (equivalent viscoplastic strain, yield stress, ...).
+  virtual int internal_count() const { return 0; }
+  virtual std::vector<std::string> internal_names() const { return {}; }
+  /// Initial values of the internal variables.
+  virtual void initial_internal(std::span<double> internal) const { (void)internal; }
+  /// True if the material never flows (its source term is zero).
+  virtual bool is_elastic() const { return true; }
+
+  /// Viscoplastic strain rate at `stress` with internal variables `internal`, and the rates of the
+  /// internal variables. Elastic materials return zeros.
+  virtual void viscoplastic_rate(const SymmetricTensor& stress, std::span<const double> internal,
+                                 SymmetricTensor& strain_rate,
+                                 std::span<double> internal_rate) const {
+    (void)stress;
+    (void)internal;
+    strain_rate.fill(0.0);
+    for (double& r : internal_rate)
+      r = 0.0;
+  }
+
+  /// Relaxation rate of the source [1/s] (for RK sub-stepping); 0 for elastic materials.
+  virtual double source_stiffness(const SymmetricTensor& stress,
+                                  std::span<const double> internal) const {
+    (void)stress;
+    (void)internal;
+    return 0.0;
+  }
+
+ protected:
+  Material(double density, ElasticConstants elastic) : density_(density), elastic_(elastic) {}
+
+ private:
+  double density_;
+  ElasticConstants elastic_;
+};
+
+}  // namespace rktsph

@@ -1,0 +1,64 @@
+// The seam between the one RK-TSPH step and the physics it advances (docs/theory.md §2).
+//
+// A physics model says which fields it carries (and their mirror parities), turns gradients into
+// the flux rate R(grad Phi), and advances values over a time interval with the flux rate frozen
+// (y' = R + S(y, kappa, t), prototype finding R5). V1 (dry solid), V2 (dry solid with Jaumann
+// terms and moving nodes) and V3 (saturated, plus a pressure projection) differ only here.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "rktsph/core/field_array.hpp"
+#include "rktsph/sph/operators.hpp"
+
+namespace rktsph {
+
+class PhysicsModel {
+ public:
+  virtual ~PhysicsModel() = default;
+
+  virtual int dimension() const = 0;
+  /// Number of unknowns per point (velocity components, stress components, ...).
+  virtual int field_count() const = 0;
+  /// Names of the unknowns, e.g. "velocity_x", "stress_xy" (also the probe field names).
+  virtual const std::vector<std::string>& field_names() const = 0;
+  /// Mirror parity of each unknown.
+  virtual std::span<const Parity> parities() const = 0;
+  /// Number of internal variables carried per SPH node.
+  virtual int internal_count() const = 0;
+  virtual const std::vector<std::string>& internal_names() const = 0;
+
+  /// Index of velocity component `axis` among the unknowns.
+  virtual int velocity_field(int axis) const = 0;
+  /// Index of stress component (i, j) among the unknowns, or -1 if it is not carried.
+  virtual int stress_field(int i, int j) const = 0;
+
+  /// Largest wave speed of the model [m/s] (the drained P-wave speed), for the Courant rule.
+  virtual double max_wave_speed() const = 0;
+
+  /// Flux rate R at each point from the gradients (field f along axis c at f * dimension + c).
+  /// `material[i]` is the material of point i; rate has field_count() fields.
+  virtual void flux_rate(std::span<const std::int32_t> material, const FieldArray& gradient,
+                         FieldArray& rate) const = 0;
+
+  /// Advances `values` and `internal` of points [0, material.size()) from `time` over `interval`
+  /// with the flux rate frozen: y' = rate + S(y, kappa, t).
+  virtual void advance(std::span<const std::int32_t> material, const FieldArray& rate, double time,
+                       double interval, FieldArray& values, FieldArray& internal) const = 0;
+
+  /// Makes the stress increment of point i (now `values`, before `start`) traction-free along the
+  /// axes in `normal_axes` (bit a: a face with normal along a): the normal strain is whatever keeps
+  /// sigma_nn unchanged (prototype finding R2, docs/theory.md §5.1).
+  virtual void project_normal_stress_increment(std::int32_t material, std::uint8_t normal_axes,
+                                               std::span<const double> start, FieldArray& values,
+                                               std::size_t i) const = 0;
+
+  /// Initial internal variables of point i.
+  virtual void initial_internal(std::int32_t material, FieldArray& internal,
+                                std::size_t i) const = 0;
+};
+
+}  // namespace rktsph

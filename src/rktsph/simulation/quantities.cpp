@@ -1,0 +1,65 @@
+#include "rktsph/simulation/quantities.hpp"
+
+#include <cmath>
+
+namespace rktsph {
+
+namespace {
+const char* axis_letter(int a) {
+  return a == 0 ? "x" : (a == 1 ? "y" : "z");
+}
+
+double pressure(const SymmetricTensor& s) {
+  return -(s[0] + s[1] + s[2]) / 3.0;
+}
+
+double deviatoric_stress(const SymmetricTensor& s) {
+  const double mean = (s[0] + s[1] + s[2]) / 3.0;
+  const double dxx = s[0] - mean, dyy = s[1] - mean, dzz = s[2] - mean;
+  const double j2 =
+      0.5 * (dxx * dxx + dyy * dyy + dzz * dzz) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
+  return std::sqrt(3.0 * j2);
+}
+}  // namespace
+
+NodeQuantity find_quantity(const Simulation& simulation, const std::string& name) {
+  const DrySolid& model = simulation.model();
+  const auto& fields = model.field_names();
+  for (std::size_t f = 0; f < fields.size(); ++f)
+    if (fields[f] == name) {
+      const int field = static_cast<int>(f);
+      return [field](const State& s, std::size_t i) { return s.fields(field, i); };
+    }
+  for (int a = 0; a < model.dimension(); ++a)
+    if (name == std::string("displacement_") + axis_letter(a))
+      return [a](const State& s, std::size_t i) { return s.displacement(a, i); };
+  const auto& internal = model.internal_names();
+  for (std::size_t k = 0; k < internal.size(); ++k)
+    if (internal[k] == name) {
+      const int index = static_cast<int>(k);
+      return [index](const State& s, std::size_t i) { return s.internal(index, i); };
+    }
+  if (name == "pressure")
+    return [&model](const State& s, std::size_t i) {
+      return pressure(model.stress_tensor(s.fields, i));
+    };
+  if (name == "deviatoric_stress")
+    return [&model](const State& s, std::size_t i) {
+      return deviatoric_stress(model.stress_tensor(s.fields, i));
+    };
+  return {};
+}
+
+std::vector<std::string> quantity_names(const Simulation& simulation) {
+  const DrySolid& model = simulation.model();
+  std::vector<std::string> names = model.field_names();
+  for (int a = 0; a < model.dimension(); ++a)
+    names.push_back(std::string("displacement_") + axis_letter(a));
+  for (const std::string& name : model.internal_names())
+    names.push_back(name);
+  names.push_back("pressure");
+  names.push_back("deviatoric_stress");
+  return names;
+}
+
+}  // namespace rktsph

@@ -1,0 +1,169 @@
+#include "rktsph/simulation/simulation.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "rktsph/materials/material_factory.hpp"
+
+namespace rktsph {
+
+const char* run_status_name(RunStatus status) {
+  switch (status) {
+    case RunStatus::Completed:
+      return "completed";
+    case RunStatus::Diverged:
+      return "diverged";
+    case RunStatus::Stopped:
+      return "stopped";
+  }
+  return "unknown";
+}
+
+namespace {
+
+Kinematics kinematics_of(const CaseDescription& description) {
+  if (description.dimension == 1) return Kinematics::Bar1D;
+  return description.plane == PlaneKind::Strain ? Kinematics::PlaneStrain : Kinematics::PlaneStress;
+}
+
+Loads loads_of(const CaseDescription& description) {
+  Loads loads;
+  if (description.gravity) {
+    loads.gravity = description.gravity->acceleration;
+    loads.gravity_factor = description.gravity->factor;
+  }
+  if (description.damping) {
+    loads.damping = description.damping->coefficient;
+    loads.damping_start = description.damping->start;
+    loads.damping_end = description.damping->end;
+  }
+  return loads;
+}
+
+}  // namespace
+
+Simulation::Simulation(CaseDescription description) : description_(std::move(description)) {
+  if (description_.model != ModelKind::DrySolid)
+    throw InputError(SourceLocation{description_.file, 0, 0}, "model", "saturated_vpw",
+                     "the saturated v-pw model is not available in this version", "dry_solid");
+
+  std::vector<std::unique_ptr<Material>> materials;
+  std::vector<std::string> material_names;
+  for (const auto& [name, block] : description_.materials) {
+    materials.push_back(create_material(block));
+    material_names.push_back(name);
+  }
+  nodes_ = build_node_sets(description_.geometry, description_.dimension, material_names);
+  groups_ = select_groups(nodes_, description_.groups);
+
+  const NumericsSpec& numerics = description_.numerics;
+  model_ = std::make_unique<DrySolid>(
+      kinematics_of(description_), std::move(materials), loads_of(description_),
+      SourceIntegration{numerics.rk_substep_factor, numerics.rk_max_substeps});
+  conditions_ = std::make_unique<BoundaryConditions>(description_, nodes_, groups_, *model_);
+
+  StepOptions options;
+  options.kernel = numerics.kernel;
+  options.h_over_dx = numerics.h_over_dx;
+  options.interpolation_order = numerics.interpolation_order;
+  options.hourglass_filter = numerics.hourglass_filter;
+  options.hourglass_kappa = numerics.hourglass_kappa;
+  options.hourglass_h_over_dx = numerics.hourglass_h_over_dx;
+  step_ = std::make_unique<RkTaylorStep>(
+      *model_, nodes_, build_step_operators(nodes_, options, conditions_->mirror_planes()),
+      *conditions_);
+
+  // dt = C dx / c_p (docs/theory.md §2.5), constant: the operators are fixed.
+  time_step_ = numerics.time_step ? *numerics.time_step
+                                  : numerics.courant * nodes_.spacing / model_->max_wave_speed();
+  total_steps_ = static_cast<long>(std::ceil(description_.time.end / time_step_ - 1e-9));
+  if (total_steps_ > description_.time.max_steps)
+    throw InputError(description_.time.where, "time.max_steps",
+                     fmt::format("{}", description_.time.max_steps),
+                     fmt::format("the run needs {} steps of {:.4g} s to reach {} s", total_steps_,
+                                 time_step_, description_.time.end),
+                     fmt::format("max_steps >= {} (or a shorter time.end)", total_steps_));
+  initialise_state();
+}
+
+void Simulation::initialise_state() {
+  const std::size_t n = nodes_.sph_nodes.size();
+  const int d = description_.dimension;
+  state_.fields = FieldArray(model_->field_count(), n);
+  state_.internal = FieldArray(model_->internal_count(), n);
+  state_.displacement = FieldArray(d, n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int a = 0; a < d; ++a)
+      state_.fields(model_->velocity_field(a), i) = description_.initial.velocity[a];
+    model_->initial_internal(nodes_.node_material[i], state_.internal, i);
+  }
+  if (description_.initial.geostatic_surface) {
+    // sigma_v = rho g_y (surface - y) (g_y < 0 gives compression), sigma_h = K0 sigma_v.
+    const double surface = *description_.initial.geostatic_surface;
+    const double g_vertical =
+        description_.gravity ? description_.gravity->acceleration[d - 1] : 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Material& material = model_->material(nodes_.node_material[i]);
+      const double nu = material.elastic().poisson_ratio;
+      const double k0 = description_.initial.k0.value_or(nu / (1.0 - nu));
+      const double depth = surface - nodes_.sph_nodes.position[d - 1][i];
+      const double vertical = material.density() * g_vertical * depth;
+      state_.fields(model_->stress_field(d - 1, d - 1), i) = vertical;
+      for (int a = 0; a < d - 1; ++a)
+        state_.fields(model_->stress_field(a, a), i) = k0 * vertical;
+      const int zz = model_->stress_field(2, 2);
+      if (zz >= 0) state_.fields(zz, i) = k0 * vertical;
+    }
+  }
+  conditions_->apply(0.0, state_.fields);
+}
+
+std::string Simulation::find_non_finite(const State& state) const {
+  const std::size_t n = nodes_.sph_nodes.size();
+  for (int f = 0; f < state.fields.field_count(); ++f) {
+    const double* values = state.fields.field(f);
+    for (std::size_t i = 0; i < n; ++i)
+      if (!std::isfinite(values[i])) {
+        std::string where = fmt::format("x = {:.6g}", nodes_.sph_nodes.position[0][i]);
+        if (nodes_.dimension > 1)
+          where += fmt::format(", y = {:.6g}", nodes_.sph_nodes.position[1][i]);
+        return fmt::format("field '{}' is not finite at SPH node {} ({} m)",
+                           model_->field_names()[static_cast<std::size_t>(f)], i, where);
+      }
+  }
+  for (int k = 0; k < state.internal.field_count(); ++k)
+    for (std::size_t i = 0; i < n; ++i)
+      if (!std::isfinite(state.internal(k, i)))
+        return fmt::format("internal variable '{}' is not finite at SPH node {}",
+                           model_->internal_names()[static_cast<std::size_t>(k)], i);
+  return {};
+}
+
+RunStatus Simulation::run() {
+  const auto start = std::chrono::steady_clock::now();
+  for (Observer* observer : observers_)
+    observer->on_start(*this);
+  RunStatus status = RunStatus::Completed;
+  // Every step is checked; on divergence the observers keep the last good output on disk.
+  for (long s = 0; s < total_steps_; ++s) {
+    step_->advance(state_, time_step_);
+    const std::string problem = find_non_finite(state_);
+    if (!problem.empty()) {
+      message_ =
+          fmt::format("diverged at step {} (t = {:.6g} s): {}", state_.step, state_.time, problem);
+      status = RunStatus::Diverged;
+      break;
+    }
+    wall_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for (Observer* observer : observers_)
+      observer->after_step(*this);
+  }
+  wall_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (Observer* observer : observers_)
+    observer->on_finish(*this, status, message_);
+  return status;
+}
+
+}  // namespace rktsph

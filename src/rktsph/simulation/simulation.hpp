@@ -1,0 +1,82 @@
+// A run: the case turned into nodes, materials, a physics model, boundary conditions, the step
+// operators and the state; and the time loop, which observers watch (docs/theory.md §2.3).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rktsph/boundary/boundary_conditions.hpp"
+#include "rktsph/case/case_description.hpp"
+#include "rktsph/geometry/node_sets.hpp"
+#include "rktsph/models/dry_solid.hpp"
+#include "rktsph/simulation/state.hpp"
+#include "rktsph/time/rk_taylor_step.hpp"
+
+namespace rktsph {
+
+class Simulation;
+
+enum class RunStatus { Completed, Diverged, Stopped };
+const char* run_status_name(RunStatus status);
+
+/// Something that watches the loop: output, probes, progress, validation metrics.
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  virtual void on_start(const Simulation& simulation) { (void)simulation; }
+  virtual void after_step(const Simulation& simulation) { (void)simulation; }
+  virtual void on_finish(const Simulation& simulation, RunStatus status,
+                         const std::string& message) {
+    (void)simulation;
+    (void)status;
+    (void)message;
+  }
+};
+
+class Simulation {
+ public:
+  /// Builds everything; InputError for inconsistent input, RunError for an unusable lattice.
+  explicit Simulation(CaseDescription description);
+
+  void add_observer(Observer& observer) { observers_.push_back(&observer); }
+  /// Runs to the end time. A non-finite value stops the run with status Diverged and a message
+  /// naming the step, time, node, position and field; the state is then the last good one.
+  RunStatus run();
+  const std::string& message() const { return message_; }
+
+  const CaseDescription& description() const { return description_; }
+  const NodeSets& nodes() const { return nodes_; }
+  const std::map<std::string, std::vector<std::int32_t>>& groups() const { return groups_; }
+  const DrySolid& model() const { return *model_; }
+  const BoundaryConditions& boundary_conditions() const { return *conditions_; }
+  const RkTaylorStep& step() const { return *step_; }
+  const State& state() const { return state_; }
+  /// Direct access for drivers that step by hand (tests, step-matrix analysis, restarts).
+  RkTaylorStep& step() { return *step_; }
+  State& state() { return state_; }
+  double time_step() const { return time_step_; }
+  long total_steps() const { return total_steps_; }
+  double wall_seconds() const { return wall_seconds_; }
+
+ private:
+  void initialise_state();
+  /// Index of the first non-finite value as (field name, node), or empty if all are finite.
+  std::string find_non_finite(const State& state) const;
+
+  CaseDescription description_;
+  NodeSets nodes_;
+  std::map<std::string, std::vector<std::int32_t>> groups_;
+  std::unique_ptr<DrySolid> model_;
+  std::unique_ptr<BoundaryConditions> conditions_;
+  std::unique_ptr<RkTaylorStep> step_;
+  State state_;
+  double time_step_ = 0.0;
+  long total_steps_ = 0;
+  double wall_seconds_ = 0.0;
+  std::string message_;
+  std::vector<Observer*> observers_;
+};
+
+}  // namespace rktsph

@@ -1,0 +1,17 @@
+// The persistent state of a run: everything lives on the SPH nodes (docs/theory.md §2.2, Q2);
+// stress points hold no state between steps.
+#pragma once
+
+#include "rktsph/core/field_array.hpp"
+
+namespace rktsph {
+
+struct State {
+  double time = 0.0;  ///< [s]
+  long step = 0;
+  FieldArray fields;        ///< the model's unknowns (velocity, stress, ...) on SPH nodes
+  FieldArray internal;      ///< internal variables on SPH nodes
+  FieldArray displacement;  ///< u, integrated from the velocity (trapezoidal), one field per axis
+};
+
+}  // namespace rktsph

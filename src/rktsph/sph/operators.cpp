@@ -1,0 +1,297 @@
+#include "rktsph/sph/operators.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cassert>
+#include <cmath>
+#include <stdexcept>
+
+namespace rktsph {
+
+namespace {
+
+using Vector = std::array<double, 3>;
+using Matrix = std::array<std::array<double, 3>, 3>;
+
+// Largest number of fields one apply_operator call handles (v and sigma in 3D plus spares).
+constexpr int kMaxFields = 24;
+
+double determinant(const Matrix& a, int d) {
+  switch (d) {
+    case 1:
+      return a[0][0];
+    case 2:
+      return a[0][0] * a[1][1] - a[0][1] * a[1][0];
+    default:
+      return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+             a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+             a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  }
+}
+
+Matrix inverse(const Matrix& a, int d, double det) {
+  Matrix inv{};
+  if (d == 1) {
+    inv[0][0] = 1.0 / det;
+  } else if (d == 2) {
+    inv[0][0] = a[1][1] / det;
+    inv[0][1] = -a[0][1] / det;
+    inv[1][0] = -a[1][0] / det;
+    inv[1][1] = a[0][0] / det;
+  } else {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) {
+        const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+        inv[r][c] = (a[r1][c1] * a[r2][c2] - a[r1][c2] * a[r2][c1]) / det;
+      }
+  }
+  return inv;
+}
+
+// Reflects x across the planes selected by the bits of `subset` (indices into mirrors).
+Vector reflect(Vector x, const std::vector<MirrorPlane>& mirrors, unsigned subset) {
+  for (std::size_t m = 0; m < mirrors.size(); ++m)
+    if (subset & (1u << m)) {
+      const MirrorPlane& plane = mirrors[m];
+      x[plane.axis] = 2.0 * plane.coordinate - x[plane.axis];
+    }
+  return x;
+}
+
+}  // namespace
+
+void gather_stencil(const Vector& target, const CellList& cells, const OperatorOptions& options,
+                    std::int32_t exclude, std::vector<StencilSource>& stencil) {
+  stencil.clear();
+  const double support = options.kernel.support_radius(options.smoothing_length);
+  const double on_plane_tolerance = 1e-8 * options.smoothing_length;
+  const PointCloud& sources = cells.points();
+  const auto& mirrors = options.mirrors;
+  if (mirrors.size() > 8) throw std::invalid_argument("at most 8 mirror planes are supported");
+
+  for (unsigned subset = 0; subset < (1u << mirrors.size()); ++subset) {
+    // A set of planes contributes images only if the target is within the support of each.
+    bool near_all = true;
+    std::uint8_t reflection = 0;
+    for (std::size_t m = 0; m < mirrors.size(); ++m)
+      if (subset & (1u << m)) {
+        near_all = near_all && std::abs(target[mirrors[m].axis] - mirrors[m].coordinate) < support;
+        reflection ^= static_cast<std::uint8_t>(1u << mirrors[m].axis);
+      }
+    if (!near_all) continue;
+    // |target - R(x_j)| = |R(target) - x_j|: search around the reflected target.
+    const Vector query = reflect(target, mirrors, subset);
+    cells.for_each_within(query, support, [&](std::int32_t j, const Vector&, double) {
+      if (subset == 0 && j == exclude) return;
+      const Vector x = sources.point(static_cast<std::size_t>(j));
+      for (std::size_t m = 0; m < mirrors.size(); ++m)
+        if ((subset & (1u << m)) &&
+            std::abs(x[mirrors[m].axis] - mirrors[m].coordinate) <= on_plane_tolerance)
+          return;  // its image coincides with a point already counted
+      stencil.push_back(StencilSource{j, reflection, reflect(x, mirrors, subset),
+                                      sources.volume[static_cast<std::size_t>(j)]});
+    });
+  }
+}
+
+bool append_row(WeightTable& table, const Vector& target, std::span<const StencilSource> stencil,
+                const OperatorOptions& options, GradientReference reference,
+                std::int32_t self_column) {
+  const int d = table.dimension;
+  const Kernel& kernel = options.kernel;
+  const double h = options.smoothing_length;
+  const std::size_t n = stencil.size();
+  const std::size_t first = table.source.size();
+
+  // Kernel values w_b = W V_b and gradients g_b = grad_a W(x_a - x_b) V_b (docs/theory.md eq. 4.2).
+  double weight_sum = 0.0;
+  Vector gradient_sum{};
+  for (const StencilSource& s : stencil) {
+    Vector offset{};
+    double r2 = 0.0;
+    for (int a = 0; a < d; ++a) {
+      offset[a] = target[a] - s.position[a];
+      r2 += offset[a] * offset[a];
+    }
+    const double w = kernel.value(std::sqrt(r2), h) * s.volume;
+    const Vector g = kernel.gradient(offset, h);
+    table.source.push_back(s.column);
+    table.reflection.push_back(s.reflection);
+    table.interpolation.push_back(w);
+    for (int a = 0; a < 3; ++a)
+      table.gradient[a].push_back(a < d ? g[a] * s.volume : 0.0);
+    weight_sum += w;
+    for (int a = 0; a < d; ++a)
+      gradient_sum[a] += g[a] * s.volume;
+    if (s.reflection) table.has_reflections = true;
+  }
+
+  // Reference point: the Shepard centroid (cross-set) or the target itself (self-referenced).
+  Vector reference_point = target;
+  if (reference == GradientReference::ShepardCentroid && weight_sum > 0.0) {
+    reference_point = {0.0, 0.0, 0.0};
+    for (std::size_t k = 0; k < n; ++k)
+      for (int a = 0; a < d; ++a)
+        reference_point[a] += table.interpolation[first + k] / weight_sum * stencil[k].position[a];
+  }
+
+  // Correction matrix A = sum_b g_b (x_b - x_ref)^T and its scale sum_b |g_b||x_b - x_ref|.
+  Matrix correction{};
+  double scale = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    double g_norm = 0.0, x_norm = 0.0;
+    for (int a = 0; a < d; ++a) {
+      const double g = table.gradient[a][first + k];
+      g_norm += g * g;
+      x_norm += std::pow(stencil[k].position[a] - reference_point[a], 2);
+      for (int b = 0; b < d; ++b)
+        correction[a][b] += g * (stencil[k].position[b] - reference_point[b]);
+    }
+    scale += std::sqrt(g_norm * x_norm);
+  }
+  const double det = determinant(correction, d);
+  const bool regular = n > 0 && weight_sum > 0.0 && scale > 0.0 &&
+                       std::abs(det) >= options.degeneracy_tolerance * std::pow(scale / d, d);
+
+  Matrix inverse_correction{};
+  if (regular) {
+    inverse_correction = inverse(correction, d, det);
+  } else {
+    for (int a = 0; a < d; ++a)
+      inverse_correction[a][a] = 1.0;  // uncorrected SPH gradient
+  }
+
+  // Gradient weights K_b = A^-1 (g_b - G w^_b) (centroid) or A^-1 g_b (self).
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t e = first + k;
+    const double shepard = weight_sum > 0.0 ? table.interpolation[e] / weight_sum : 0.0;
+    Vector raw{};
+    for (int a = 0; a < d; ++a)
+      raw[a] = table.gradient[a][e] -
+               (reference == GradientReference::ShepardCentroid ? gradient_sum[a] * shepard : 0.0);
+    for (int a = 0; a < d; ++a) {
+      double value = 0.0;
+      for (int b = 0; b < d; ++b)
+        value += inverse_correction[a][b] * raw[b];
+      table.gradient[a][e] = value;
+    }
+    table.interpolation[e] = shepard;
+  }
+
+  if (reference == GradientReference::ShepardCentroid) {
+    // First-order interpolation: f_a = f^ - (x_ref - x_a) . grad f (docs/theory.md eq. 4.4).
+    if (options.interpolation_order == 1 && regular)
+      for (std::size_t k = 0; k < n; ++k)
+        for (int a = 0; a < d; ++a)
+          table.interpolation[first + k] -=
+              (reference_point[a] - target[a]) * table.gradient[a][first + k];
+  } else {
+    // Self column: its value is the reference, so its weight cancels the others' sum.
+    Vector self_gradient{};
+    for (std::size_t k = 0; k < n; ++k) {
+      table.interpolation[first + k] = 0.0;
+      for (int a = 0; a < d; ++a)
+        self_gradient[a] -= table.gradient[a][first + k];
+    }
+    table.source.push_back(self_column);
+    table.reflection.push_back(0);
+    table.interpolation.push_back(1.0);
+    for (int a = 0; a < 3; ++a)
+      table.gradient[a].push_back(self_gradient[a]);
+  }
+  table.row_start.push_back(static_cast<std::int64_t>(table.source.size()));
+  return regular;
+}
+
+namespace {
+
+WeightTable empty_table(int dimension) {
+  WeightTable table;
+  table.dimension = dimension;
+  table.row_start.push_back(0);
+  return table;
+}
+
+}  // namespace
+
+WeightTable build_cross_operator(const PointCloud& targets, const CellList& sources,
+                                 const OperatorOptions& options, StencilReport* report) {
+  WeightTable table = empty_table(targets.dimension);
+  std::vector<StencilSource> stencil;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const Vector x = targets.point(i);
+    gather_stencil(x, sources, options, -1, stencil);
+    const bool regular =
+        append_row(table, x, stencil, options, GradientReference::ShepardCentroid, -1);
+    if (!regular && report) report->degenerate_rows.push_back(static_cast<std::int32_t>(i));
+  }
+  return table;
+}
+
+WeightTable build_collocated_gradient(const PointCloud& points, const CellList& cells,
+                                      const OperatorOptions& options,
+                                      std::span<const std::int32_t> rows, StencilReport* report) {
+  WeightTable table = empty_table(points.dimension);
+  std::vector<StencilSource> stencil;
+  const std::size_t row_count = rows.empty() ? points.size() : rows.size();
+  for (std::size_t r = 0; r < row_count; ++r) {
+    const auto self = rows.empty() ? static_cast<std::int32_t>(r) : rows[r];
+    const Vector x = points.point(static_cast<std::size_t>(self));
+    gather_stencil(x, cells, options, self, stencil);
+    const bool regular = append_row(table, x, stencil, options, GradientReference::Self, self);
+    if (!regular && report) report->degenerate_rows.push_back(static_cast<std::int32_t>(r));
+  }
+  return table;
+}
+
+void apply_operator(const WeightTable& table, const FieldArray& in, std::span<const Parity> parity,
+                    FieldArray* out_values, FieldArray* out_gradient) {
+  const int field_count = in.field_count();
+  const int d = table.dimension;
+  if (field_count > kMaxFields || static_cast<int>(parity.size()) != field_count)
+    throw std::invalid_argument("apply_operator: field count and parity list disagree");
+  if ((out_values &&
+       (out_values->point_count() < table.rows() || out_values->field_count() < field_count)) ||
+      (out_gradient && (out_gradient->point_count() < table.rows() ||
+                        out_gradient->field_count() < field_count * d)))
+    throw std::invalid_argument("apply_operator: output arrays smaller than the table");
+  const auto rows = static_cast<std::int64_t>(table.rows());
+  const std::int64_t* row_start = table.row_start.data();
+  const std::int32_t* source = table.source.data();
+  const std::uint8_t* reflection = table.reflection.data();
+  const double* interpolation = table.interpolation.data();
+  const double* gradient[3] = {table.gradient[0].data(), table.gradient[1].data(),
+                               table.gradient[2].data()};
+  const double* input[kMaxFields];
+  for (int f = 0; f < field_count; ++f)
+    input[f] = in.field(f);
+
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < rows; ++i) {
+    double value[kMaxFields] = {};
+    double derivative[kMaxFields * 3] = {};
+    for (std::int64_t k = row_start[i]; k < row_start[i + 1]; ++k) {
+      const std::int32_t j = source[k];
+      const double w = interpolation[k];
+      const double gx = gradient[0][k], gy = gradient[1][k], gz = gradient[2][k];
+      const std::uint8_t bits = table.has_reflections ? reflection[k] : 0;
+      for (int f = 0; f < field_count; ++f) {
+        double v = input[f][j];
+        if (std::popcount(static_cast<unsigned>(parity[f] & bits)) & 1u) v = -v;
+        value[f] += w * v;
+        derivative[f * 3 + 0] += gx * v;
+        derivative[f * 3 + 1] += gy * v;
+        derivative[f * 3 + 2] += gz * v;
+      }
+    }
+    if (out_values)
+      for (int f = 0; f < field_count; ++f)
+        out_values->field(f)[i] = value[f];
+    if (out_gradient)
+      for (int f = 0; f < field_count; ++f)
+        for (int c = 0; c < d; ++c)
+          out_gradient->field(f * d + c)[i] = derivative[f * 3 + c];
+  }
+}
+
+}  // namespace rktsph

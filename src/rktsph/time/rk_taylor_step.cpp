@@ -1,0 +1,306 @@
+#include "rktsph/time/rk_taylor_step.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "rktsph/core/error.hpp"
+
+namespace rktsph {
+
+namespace {
+
+// Removes the last row of a table (used to retry a degenerate boundary stencil).
+void drop_last_row(WeightTable& table) {
+  table.row_start.pop_back();
+  const auto size = static_cast<std::size_t>(table.row_start.back());
+  table.source.resize(size);
+  table.reflection.resize(size);
+  table.interpolation.resize(size);
+  for (auto& g : table.gradient)
+    g.resize(size);
+}
+
+std::string describe_point(const PointCloud& points, std::size_t i) {
+  if (points.dimension == 1) return fmt::format("x = {:.6g} m", points.position[0][i]);
+  return fmt::format("(x, y) = ({:.6g}, {:.6g}) m", points.position[0][i], points.position[1][i]);
+}
+
+// A node's step-2 stencil is complete when all 2^d lattice cells around it carry a stress point
+// (counting mirror images); otherwise it is a boundary node and gets the half-step of step 1b.
+bool has_complete_cells(std::span<const StencilSource> stencil, const std::array<double, 3>& x,
+                        int dimension, double spacing) {
+  const double nearest = 0.5 * std::sqrt(static_cast<double>(dimension)) * spacing * (1.0 + 1e-6);
+  int count = 0;
+  for (const StencilSource& s : stencil) {
+    double r2 = 0.0;
+    for (int a = 0; a < dimension; ++a)
+      r2 += std::pow(s.position[a] - x[a], 2);
+    if (r2 <= nearest * nearest) ++count;
+  }
+  return count == (1 << dimension);
+}
+
+}  // namespace
+
+StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& options,
+                                   const std::vector<MirrorPlane>& mirrors) {
+  const int d = nodes.dimension;
+  const double dx = nodes.spacing;
+  OperatorOptions operator_options;
+  operator_options.kernel = Kernel(options.kernel, d);
+  operator_options.smoothing_length = options.h_over_dx * dx;
+  operator_options.interpolation_order = options.interpolation_order;
+  operator_options.mirrors = mirrors;
+  const double support = operator_options.kernel.support_radius(operator_options.smoothing_length);
+  const CellList node_cells(nodes.sph_nodes, support);
+  const CellList point_cells(nodes.stress_points, support);
+
+  StepOperators ops;
+  StencilReport report;
+  ops.nodes_to_points =
+      build_cross_operator(nodes.stress_points, node_cells, operator_options, &report);
+  if (!report.degenerate_rows.empty())
+    throw RunError(fmt::format(
+        "the stress point at {} has a degenerate stencil (h/dx = {} is too small for its "
+        "neighbourhood)",
+        describe_point(nodes.stress_points, static_cast<std::size_t>(report.degenerate_rows[0])),
+        options.h_over_dx));
+
+  // Classify nodes, then build the step-2 table.
+  const std::size_t n = nodes.sph_nodes.size();
+  const auto n_points = static_cast<std::int32_t>(nodes.stress_points.size());
+  std::vector<std::vector<StencilSource>> stencils(n);
+  ops.node_to_boundary_row.assign(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    gather_stencil(nodes.sph_nodes.point(i), point_cells, operator_options, -1, stencils[i]);
+    if (!has_complete_cells(stencils[i], nodes.sph_nodes.point(i), d, dx)) {
+      ops.node_to_boundary_row[i] = static_cast<std::int32_t>(ops.boundary_nodes.size());
+      ops.boundary_nodes.push_back(static_cast<std::int32_t>(i));
+    }
+  }
+
+  WeightTable& table = ops.points_to_nodes;
+  table.dimension = d;
+  table.row_start.push_back(0);
+  std::vector<StencilSource> extra;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto x = nodes.sph_nodes.point(i);
+    const auto self = static_cast<std::int32_t>(i);
+    std::vector<StencilSource>& stencil = stencils[i];
+    bool regular;
+    if (ops.node_to_boundary_row[i] < 0) {
+      regular =
+          append_row(table, x, stencil, operator_options, GradientReference::ShepardCentroid, -1);
+    } else {
+      // Boundary node: own half-step value as reference (spec §2.2, step 2).
+      regular =
+          append_row(table, x, stencil, operator_options, GradientReference::Self, n_points + self);
+      if (!regular) {
+        // Rank-deficient compact stencil (e.g. a corner at h = 0.75 dx): add the half-step values
+        // of the neighbouring boundary nodes (prototype finding R4).
+        drop_last_row(table);
+        gather_stencil(x, node_cells, operator_options, self, extra);
+        for (StencilSource s : extra)
+          if (ops.node_to_boundary_row[static_cast<std::size_t>(s.column)] >= 0) {
+            s.column += n_points;
+            stencil.push_back(s);
+          }
+        regular = append_row(table, x, stencil, operator_options, GradientReference::Self,
+                             n_points + self);
+      }
+    }
+    if (!regular)
+      throw RunError(
+          fmt::format("the SPH node at {} has a degenerate stencil that even its "
+                      "boundary neighbours cannot complete",
+                      describe_point(nodes.sph_nodes, i)));
+  }
+
+  report.degenerate_rows.clear();
+  if (ops.boundary_nodes.empty()) {
+    ops.boundary_gradient.dimension = d;  // every face is a mirror plane: no half-step rows
+    ops.boundary_gradient.row_start = {0};
+  } else {
+    ops.boundary_gradient = build_collocated_gradient(nodes.sph_nodes, node_cells, operator_options,
+                                                      ops.boundary_nodes, &report);
+  }
+  if (!report.degenerate_rows.empty())
+    throw RunError(fmt::format(
+        "the boundary node at {} has a degenerate collocated stencil",
+        describe_point(nodes.sph_nodes,
+                       static_cast<std::size_t>(ops.boundary_nodes[report.degenerate_rows[0]]))));
+
+  // Hourglass filter: round trip through the stress points with first-order interpolation on a
+  // wider support, so that linear fields pass unchanged up to the boundary (prototype R6).
+  ops.hourglass_filter = options.hourglass_filter && d >= 2 && options.hourglass_kappa > 0.0;
+  ops.hourglass_kappa = options.hourglass_kappa;
+  if (ops.hourglass_filter) {
+    OperatorOptions filter_options = operator_options;
+    filter_options.smoothing_length = options.hourglass_h_over_dx * dx;
+    filter_options.interpolation_order = 1;
+    const double filter_support =
+        filter_options.kernel.support_radius(filter_options.smoothing_length);
+    const CellList filter_node_cells(nodes.sph_nodes, filter_support);
+    const CellList filter_point_cells(nodes.stress_points, filter_support);
+    ops.filter_to_points =
+        build_cross_operator(nodes.stress_points, filter_node_cells, filter_options);
+    ops.filter_to_nodes = build_cross_operator(nodes.sph_nodes, filter_point_cells, filter_options);
+  }
+  return ops;
+}
+
+RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
+                           StepOperators operators, const BoundaryConditions& conditions)
+    : model_(model), nodes_(nodes), operators_(std::move(operators)), conditions_(conditions) {
+  const int nf = model.field_count();
+  const int nk = model.internal_count();
+  const int d = model.dimension();
+  const std::size_t nv = nodes.stress_points.size();
+  const std::size_t ns = nodes.sph_nodes.size();
+  const std::size_t nb = operators_.boundary_nodes.size();
+  for (std::int32_t node : operators_.boundary_nodes) {
+    boundary_material_.push_back(nodes.node_material[static_cast<std::size_t>(node)]);
+    if (conditions.projected_axes(node))
+      projected_rows_.push_back(operators_.node_to_boundary_row[static_cast<std::size_t>(node)]);
+  }
+  internal_parity_.assign(static_cast<std::size_t>(nk), kEven);
+  half_step_ = FieldArray(nf, nv + ns);
+  point_gradient_ = FieldArray(nf * d, nv);
+  point_rate_ = FieldArray(nf, nv);
+  point_internal_ = FieldArray(nk, nv);
+  boundary_values_ = FieldArray(nf, nb);
+  boundary_start_ = FieldArray(nf, nb);
+  boundary_gradient_ = FieldArray(nf * d, nb);
+  boundary_rate_ = FieldArray(nf, nb);
+  boundary_internal_ = FieldArray(nk, nb);
+  node_gradient_ = FieldArray(nf * d, ns);
+  node_rate_ = FieldArray(nf, ns);
+  if (operators_.hourglass_filter) {
+    filter_points_ = FieldArray(nf, nv);
+    filter_round_trip_ = FieldArray(nf, ns);
+    filter_residual_ = FieldArray(nf, ns);
+  }
+}
+
+void RkTaylorStep::advance(State& state, double dt) {
+  step_stress_points(state, dt);
+  step_boundary_nodes(state, dt);
+  step_nodes(state, dt);
+  state.time += dt;
+  ++state.step;
+}
+
+void RkTaylorStep::step_stress_points(const State& state, double dt) {
+  // Step 1: interpolate and differentiate Phi^n at the stress points, advance half a step.
+  apply_operator(operators_.nodes_to_points, state.fields, model_.parities(), &half_step_,
+                 &point_gradient_);
+  if (model_.internal_count() > 0)
+    apply_operator(operators_.nodes_to_points, state.internal, internal_parity_, &point_internal_,
+                   nullptr);
+  model_.flux_rate(nodes_.stress_point_material, point_gradient_, point_rate_);
+  model_.advance(nodes_.stress_point_material, point_rate_, state.time, 0.5 * dt, half_step_,
+                 point_internal_);
+}
+
+void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
+  // Step 1b: boundary nodes advance half a step with the collocated gradient; their half-step
+  // values join the stress points as sources of step 2 (spec §2.2, finding in §2.6).
+  const auto& boundary = operators_.boundary_nodes;
+  const int nf = model_.field_count();
+  for (std::size_t r = 0; r < boundary.size(); ++r) {
+    const auto node = static_cast<std::size_t>(boundary[r]);
+    for (int f = 0; f < nf; ++f)
+      boundary_values_(f, r) = state.fields(f, node);
+    for (int k = 0; k < model_.internal_count(); ++k)
+      boundary_internal_(k, r) = state.internal(k, node);
+  }
+  std::copy(boundary_values_.data().begin(), boundary_values_.data().end(),
+            boundary_start_.data().begin());
+  apply_operator(operators_.boundary_gradient, state.fields, model_.parities(), nullptr,
+                 &boundary_gradient_);
+  model_.flux_rate(boundary_material_, boundary_gradient_, boundary_rate_);
+  model_.advance(boundary_material_, boundary_rate_, state.time, 0.5 * dt, boundary_values_,
+                 boundary_internal_);
+  project_free_faces(boundary_start_, boundary_values_, true);
+  conditions_.apply(state.time + 0.5 * dt, boundary_values_, operators_.node_to_boundary_row);
+  const std::size_t nv = nodes_.stress_points.size();
+  for (std::size_t r = 0; r < boundary.size(); ++r)
+    for (int f = 0; f < nf; ++f)
+      half_step_(f, nv + static_cast<std::size_t>(boundary[r])) = boundary_values_(f, r);
+}
+
+void RkTaylorStep::step_nodes(State& state, double dt) {
+  // Step 2: gradient of the half-step values at the SPH nodes, full step from Phi^n.
+  apply_operator(operators_.points_to_nodes, half_step_, model_.parities(), nullptr,
+                 &node_gradient_);
+  model_.flux_rate(nodes_.node_material, node_gradient_, node_rate_);
+  const auto& boundary = operators_.boundary_nodes;
+  const int nf = model_.field_count();
+  for (std::size_t r = 0; r < boundary.size(); ++r)
+    for (int f = 0; f < nf; ++f)
+      boundary_start_(f, r) = state.fields(f, static_cast<std::size_t>(boundary[r]));
+
+  const int d = model_.dimension();
+  const std::size_t ns = nodes_.sph_nodes.size();
+  // Displacement by the trapezoidal rule: half with v^n now, half with v^{n+1} below.
+  for (int a = 0; a < d; ++a) {
+    const double* v = state.fields.field(model_.velocity_field(a));
+    double* u = state.displacement.field(a);
+    for (std::size_t i = 0; i < ns; ++i)
+      u[i] += 0.5 * dt * v[i];
+  }
+  model_.advance(nodes_.node_material, node_rate_, state.time, dt, state.fields, state.internal);
+  project_free_faces(boundary_start_, state.fields, false);
+  if (operators_.hourglass_filter) filter_hourglass(state.fields);
+  conditions_.apply(state.time + dt, state.fields);
+  for (int a = 0; a < d; ++a) {
+    const double* v = state.fields.field(model_.velocity_field(a));
+    double* u = state.displacement.field(a);
+    for (std::size_t i = 0; i < ns; ++i)
+      u[i] += 0.5 * dt * v[i];
+  }
+}
+
+void RkTaylorStep::project_free_faces(const FieldArray& start, FieldArray& values,
+                                      bool boundary_rows) const {
+  const int nf = model_.field_count();
+  double start_values[32];
+  for (std::int32_t r : projected_rows_) {
+    const auto row = static_cast<std::size_t>(r);
+    const std::int32_t node = operators_.boundary_nodes[row];
+    for (int f = 0; f < nf; ++f)
+      start_values[f] = start(f, row);
+    model_.project_normal_stress_increment(
+        nodes_.node_material[static_cast<std::size_t>(node)], conditions_.projected_axes(node),
+        std::span<const double>(start_values, static_cast<std::size_t>(nf)), values,
+        boundary_rows ? row : static_cast<std::size_t>(node));
+  }
+}
+
+void RkTaylorStep::filter_hourglass(FieldArray& fields) {
+  // f <- f - kappa (r1 - Pi r1), r1 = f - Pi f, Pi = round trip through the stress points
+  // (docs/theory.md §3.3; symbol 1 - kappa (1 - a^2)^2, removes the checkerboard).
+  auto round_trip = [&](const FieldArray& in) {
+    apply_operator(operators_.filter_to_points, in, model_.parities(), &filter_points_, nullptr);
+    apply_operator(operators_.filter_to_nodes, filter_points_, model_.parities(),
+                   &filter_round_trip_, nullptr);
+  };
+  round_trip(fields);
+  auto& residual = filter_residual_.data();
+  const auto& field_data = fields.data();
+  const auto& trip = filter_round_trip_.data();
+  const auto count = static_cast<std::int64_t>(residual.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < count; ++k)
+    residual[k] = field_data[k] - trip[k];
+  round_trip(filter_residual_);
+  auto& out = fields.data();
+  const double kappa = operators_.hourglass_kappa;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < count; ++k)
+    out[k] -= kappa * (residual[k] - trip[k]);
+}
+
+}  // namespace rktsph

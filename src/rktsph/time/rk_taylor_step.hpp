@@ -1,0 +1,88 @@
+// One Runge-Kutta Taylor-SPH step (docs/theory.md §2.2), written once for every physics model:
+//   1   stress points:  Phi^{n+1/2} = I(Phi^n) + RK[frozen R(G(Phi^n))] over dt/2
+//   1b  boundary nodes: Phi^{n+1/2} = Phi^n + RK[frozen R(G_SS(Phi^n))] over dt/2, then BCs
+//   2   SPH nodes:      Phi^{n+1}   = Phi^n + RK[frozen R(G(Phi^{n+1/2}))] over dt
+//   3   hourglass filter (2D), boundary conditions at t + dt, displacement.
+// The operators are weight tables built once (positions are fixed in V1 and V3).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "rktsph/boundary/boundary_conditions.hpp"
+#include "rktsph/geometry/node_sets.hpp"
+#include "rktsph/models/physics_model.hpp"
+#include "rktsph/simulation/state.hpp"
+#include "rktsph/sph/operators.hpp"
+
+namespace rktsph {
+
+struct StepOptions {
+  KernelType kernel = KernelType::CubicSpline;
+  double h_over_dx = 0.75;
+  int interpolation_order = 0;
+  bool hourglass_filter = true;  // ignored in 1D, where midpoint stress points have no such mode
+  double hourglass_kappa = 0.1;
+  double hourglass_h_over_dx = 1.3;
+};
+
+/// The operator tables of the step and the classification of nodes they imply.
+struct StepOperators {
+  WeightTable nodes_to_points;    ///< step 1: S -> V interpolation and gradient
+  WeightTable points_to_nodes;    ///< step 2: columns [0, nV) stress points, [nV, nV+nS) nodes
+  WeightTable boundary_gradient;  ///< step 1b: rows = boundary_nodes, columns = SPH nodes
+  std::vector<std::int32_t> boundary_nodes;        ///< nodes with incomplete stencils (step 1b)
+  std::vector<std::int32_t> node_to_boundary_row;  ///< -1 for interior nodes
+  bool hourglass_filter = false;
+  double hourglass_kappa = 0.0;
+  WeightTable filter_to_points;  ///< first-order round trip of the filter (prototype R6)
+  WeightTable filter_to_nodes;
+};
+
+/// Builds the tables; throws RunError naming the node if a stencil cannot be made regular.
+StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& options,
+                                   const std::vector<MirrorPlane>& mirrors);
+
+class RkTaylorStep {
+ public:
+  RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes, StepOperators operators,
+               const BoundaryConditions& conditions);
+
+  /// Advances `state` by dt. Allocates nothing.
+  void advance(State& state, double dt);
+
+  const StepOperators& operators() const { return operators_; }
+
+ private:
+  void step_stress_points(const State& state, double dt);
+  void step_boundary_nodes(const State& state, double dt);
+  void step_nodes(State& state, double dt);
+  void project_free_faces(const FieldArray& start, FieldArray& values, bool boundary_rows) const;
+  void filter_hourglass(FieldArray& fields);
+
+  const PhysicsModel& model_;
+  const NodeSets& nodes_;
+  StepOperators operators_;
+  const BoundaryConditions& conditions_;
+  std::vector<std::int32_t> boundary_material_;
+  std::vector<std::int32_t> projected_rows_;
+  std::vector<Parity> internal_parity_;  // boundary rows whose stress increments are projected
+
+  // Scratch, allocated once.
+  FieldArray half_step_;  // [stress points ; SPH nodes] at t + dt/2
+  FieldArray point_gradient_;
+  FieldArray point_rate_;
+  FieldArray point_internal_;
+  FieldArray boundary_values_;
+  FieldArray boundary_start_;
+  FieldArray boundary_gradient_;
+  FieldArray boundary_rate_;
+  FieldArray boundary_internal_;
+  FieldArray node_gradient_;
+  FieldArray node_rate_;
+  FieldArray filter_points_;
+  FieldArray filter_round_trip_;
+  FieldArray filter_residual_;
+};
+
+}  // namespace rktsph

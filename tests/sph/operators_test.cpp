@@ -1,0 +1,341 @@
+// Corrective SPH operators: constants and linear fields must be reproduced exactly wherever the
+// stencil is regular (docs/theory.md §4.2), with and without mirror images; degenerate stencils
+// must be reported, not divided by zero.
+#include "rktsph/sph/operators.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "rktsph/geometry/node_sets.hpp"
+
+namespace rktsph {
+namespace {
+
+// Linear field f = c0 + k . x.
+struct LinearField {
+  double c0;
+  std::array<double, 3> k;
+  double operator()(const std::array<double, 3>& x) const {
+    return c0 + k[0] * x[0] + k[1] * x[1] + k[2] * x[2];
+  }
+};
+
+FieldArray sample(const PointCloud& points, const std::vector<LinearField>& fields) {
+  FieldArray values(static_cast<int>(fields.size()), points.size());
+  for (std::size_t f = 0; f < fields.size(); ++f)
+    for (std::size_t i = 0; i < points.size(); ++i)
+      values(static_cast<int>(f), i) = fields[f](points.point(i));
+  return values;
+}
+
+NodeSets rectangle_lattice(double width, double height, double dx) {
+  GeometrySpec geometry;
+  geometry.spacing = dx;
+  ShapeSpec shape;
+  shape.kind = ShapeSpec::Kind::Rectangle;
+  shape.vertices = {{0.0, 0.0, 0.0}, {width, height, 0.0}};
+  shape.material = "soil";
+  geometry.shapes.push_back(shape);
+  return build_node_sets(geometry, 2, {"soil"});
+}
+
+NodeSets bar_lattice(double length, double dx) {
+  GeometrySpec geometry;
+  geometry.spacing = dx;
+  ShapeSpec shape;
+  shape.kind = ShapeSpec::Kind::Segment;
+  shape.vertices = {{0.0, 0.0, 0.0}, {length, 0.0, 0.0}};
+  shape.material = "soil";
+  geometry.shapes.push_back(shape);
+  return build_node_sets(geometry, 1, {"soil"});
+}
+
+OperatorOptions options_for(int dimension, double h, int order = 0) {
+  OperatorOptions options;
+  options.kernel = Kernel(KernelType::CubicSpline, dimension);
+  options.smoothing_length = h;
+  options.interpolation_order = order;
+  return options;
+}
+
+// Checks interpolation (if requested) and gradient of linear fields on the rows not listed as
+// degenerate. Tolerance: 1e-12 relative to the field's scale (values and gradients are O(1-10),
+// so round-off of a 4-30 term sum is ~1e-14).
+void expect_linear_exact(const WeightTable& table, const PointCloud& sources,
+                         const PointCloud& targets, const StencilReport& report,
+                         bool check_interpolation) {
+  const int d = targets.dimension;
+  const std::vector<LinearField> fields = {
+      {2.0, {3.0, -5.0, 0.0}}, {-1.5, {0.25, 4.0, 0.0}}, {7.0, {0.0, 0.0, 0.0}}};
+  const FieldArray in = sample(sources, fields);
+  FieldArray values(3, targets.size()), gradient(3 * d, targets.size());
+  const std::vector<Parity> parity(3, kEven);
+  apply_operator(table, in, parity, &values, &gradient);
+  std::vector<char> degenerate(targets.size(), 0);
+  for (auto r : report.degenerate_rows)
+    degenerate[static_cast<std::size_t>(r)] = 1;
+  std::size_t checked = 0;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    if (degenerate[i]) continue;
+    ++checked;
+    for (int f = 0; f < 3; ++f) {
+      const double scale = 10.0;
+      if (check_interpolation) {
+        EXPECT_NEAR(values(f, i), fields[f](targets.point(i)), 1e-12 * scale) << "row " << i;
+      }
+      for (int c = 0; c < d; ++c)
+        EXPECT_NEAR(gradient(f * d + c, i), fields[f].k[c], 1e-12 * scale)
+            << "row " << i << " field " << f << " axis " << c;
+    }
+  }
+  EXPECT_GT(checked, 0u);
+}
+
+TEST(CrossOperator, ConstantsInterpolatedExactlyEverywhere) {
+  const NodeSets nodes = rectangle_lattice(1.0, 0.5, 0.05);
+  for (double eta : {0.75, 1.3}) {
+    const OperatorOptions options = options_for(2, eta * 0.05);
+    const CellList node_cells(nodes.sph_nodes,
+                              options.kernel.support_radius(options.smoothing_length));
+    const CellList point_cells(nodes.stress_points,
+                               options.kernel.support_radius(options.smoothing_length));
+    for (const auto& [table, targets, sources] :
+         {std::tuple{build_cross_operator(nodes.stress_points, node_cells, options),
+                     &nodes.stress_points, &nodes.sph_nodes},
+          std::tuple{build_cross_operator(nodes.sph_nodes, point_cells, options), &nodes.sph_nodes,
+                     &nodes.stress_points}}) {
+      FieldArray in(1, sources->size());
+      std::fill(in.data().begin(), in.data().end(), 4.25);
+      FieldArray out(1, targets->size());
+      const Parity even[] = {kEven};
+      apply_operator(table, in, even, &out, nullptr);
+      for (std::size_t i = 0; i < targets->size(); ++i)
+        EXPECT_NEAR(out(0, i), 4.25, 1e-13);
+    }
+  }
+}
+
+TEST(CrossOperator, LinearGradientExactFromNodesToStressPoints2D) {
+  const NodeSets nodes = rectangle_lattice(1.0, 0.5, 0.05);
+  for (double eta : {0.75, 1.3}) {
+    const OperatorOptions options = options_for(2, eta * 0.05);
+    const CellList cells(nodes.sph_nodes, options.kernel.support_radius(options.smoothing_length));
+    StencilReport report;
+    const WeightTable table = build_cross_operator(nodes.stress_points, cells, options, &report);
+    EXPECT_TRUE(report.degenerate_rows.empty()) << "eta " << eta;
+    expect_linear_exact(table, nodes.sph_nodes, nodes.stress_points, report, false);
+  }
+}
+
+TEST(CrossOperator, StressPointsToNodesExactWhereRegularAndEdgesReportedAtCompactSupport) {
+  const NodeSets nodes = rectangle_lattice(1.0, 0.5, 0.05);
+  // h = 0.75 dx: an edge node sees one row of stress points, so its centroid-referenced stencil is
+  // rank one and must be reported; every interior node is regular.
+  {
+    const OperatorOptions options = options_for(2, 0.75 * 0.05);
+    const CellList cells(nodes.stress_points,
+                         options.kernel.support_radius(options.smoothing_length));
+    StencilReport report;
+    const WeightTable table = build_cross_operator(nodes.sph_nodes, cells, options, &report);
+    const std::size_t perimeter = 2 * (21 + 11) - 4;
+    EXPECT_EQ(report.degenerate_rows.size(), perimeter);
+    expect_linear_exact(table, nodes.stress_points, nodes.sph_nodes, report, false);
+    for (double w : table.gradient[0])
+      EXPECT_TRUE(std::isfinite(w));
+  }
+  // h = 1.3 dx: every node, corners included, has a regular stencil and an exact gradient.
+  {
+    const OperatorOptions options = options_for(2, 1.3 * 0.05);
+    const CellList cells(nodes.stress_points,
+                         options.kernel.support_radius(options.smoothing_length));
+    StencilReport report;
+    const WeightTable table = build_cross_operator(nodes.sph_nodes, cells, options, &report);
+    EXPECT_TRUE(report.degenerate_rows.empty());
+    expect_linear_exact(table, nodes.stress_points, nodes.sph_nodes, report, false);
+  }
+}
+
+TEST(CrossOperator, FirstOrderInterpolationExactForLinearFieldsAtBoundaries) {
+  const NodeSets nodes = rectangle_lattice(1.0, 0.5, 0.05);
+  const OperatorOptions options = options_for(2, 1.3 * 0.05, 1);
+  const CellList cells(nodes.stress_points,
+                       options.kernel.support_radius(options.smoothing_length));
+  StencilReport report;
+  const WeightTable table = build_cross_operator(nodes.sph_nodes, cells, options, &report);
+  EXPECT_TRUE(report.degenerate_rows.empty());
+  expect_linear_exact(table, nodes.stress_points, nodes.sph_nodes, report, true);
+
+  // Shepard alone is not first order at an edge: this is what order 1 fixes.
+  const OperatorOptions shepard = options_for(2, 1.3 * 0.05, 0);
+  const WeightTable zeroth = build_cross_operator(nodes.sph_nodes, cells, shepard);
+  const FieldArray in = sample(nodes.stress_points, {{0.0, {1.0, 0.0, 0.0}}});
+  FieldArray out(1, nodes.sph_nodes.size());
+  const Parity even[] = {kEven};
+  apply_operator(zeroth, in, even, &out, nullptr);
+  EXPECT_GT(std::abs(out(0, 0) - nodes.sph_nodes.position[0][0]), 1e-3);
+}
+
+TEST(CrossOperator, OneDimensionalBarAtCompactSupport) {
+  const NodeSets nodes = bar_lattice(10.0, 0.5);
+  const OperatorOptions options = options_for(1, 0.75 * 0.5);
+  const double support = options.kernel.support_radius(options.smoothing_length);
+  const CellList node_cells(nodes.sph_nodes, support);
+  const CellList point_cells(nodes.stress_points, support);
+  StencilReport to_points, to_nodes;
+  const WeightTable forward =
+      build_cross_operator(nodes.stress_points, node_cells, options, &to_points);
+  const WeightTable backward =
+      build_cross_operator(nodes.sph_nodes, point_cells, options, &to_nodes);
+  EXPECT_TRUE(to_points.degenerate_rows.empty());
+  // Only the two end nodes (one stress point each) are degenerate.
+  EXPECT_EQ(to_nodes.degenerate_rows, (std::vector<std::int32_t>{0, 20}));
+  expect_linear_exact(forward, nodes.sph_nodes, nodes.stress_points, to_points, true);
+  expect_linear_exact(backward, nodes.stress_points, nodes.sph_nodes, to_nodes, true);
+  // Two-point stencils at a midpoint: the gradient is the central difference (f_R - f_L)/dx.
+  EXPECT_EQ(forward.row_start[1] - forward.row_start[0], 2);
+}
+
+TEST(SelfReferencedStencil, BoundaryNodesWithOwnValueAreExactInOneAndTwoDimensions) {
+  // Step-2 stencil of a boundary node: neighbouring stress points plus the node's own half-step
+  // value (column n_stress + i), spec §2.2. Exact for linear fields at ends, edges and — with the
+  // neighbouring boundary nodes added (prototype R4) — corners.
+  for (int dimension : {1, 2}) {
+    const NodeSets nodes =
+        dimension == 1 ? bar_lattice(10.0, 0.5) : rectangle_lattice(1.0, 0.5, 0.05);
+    const double dx = nodes.spacing;
+    const OperatorOptions options = options_for(dimension, 0.75 * dx);
+    const double support = options.kernel.support_radius(options.smoothing_length);
+    const CellList point_cells(nodes.stress_points, support);
+    const CellList node_cells(nodes.sph_nodes, support);
+    const auto n_points = static_cast<std::int32_t>(nodes.stress_points.size());
+
+    WeightTable table;
+    table.dimension = dimension;
+    table.row_start.push_back(0);
+    std::vector<StencilSource> stencil, extra;
+    int degenerate_before_augmenting = 0;
+    for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i) {
+      const auto x = nodes.sph_nodes.point(i);
+      gather_stencil(x, point_cells, options, -1, stencil);
+      WeightTable probe = table;
+      if (!append_row(probe, x, stencil, options, GradientReference::Self,
+                      n_points + static_cast<std::int32_t>(i))) {
+        ++degenerate_before_augmenting;
+        gather_stencil(x, node_cells, options, static_cast<std::int32_t>(i), extra);
+        for (StencilSource s : extra) {
+          s.column += n_points;
+          stencil.push_back(s);
+        }
+      }
+      ASSERT_TRUE(append_row(table, x, stencil, options, GradientReference::Self,
+                             n_points + static_cast<std::int32_t>(i)))
+          << "node " << i;
+    }
+    EXPECT_EQ(degenerate_before_augmenting, dimension == 1 ? 0 : 4);  // the four corners
+
+    // Combined source set: stress points, then SPH nodes.
+    PointCloud combined = nodes.stress_points;
+    for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i)
+      combined.push_back(nodes.sph_nodes.point(i), nodes.sph_nodes.volume[i]);
+    expect_linear_exact(table, combined, nodes.sph_nodes, StencilReport{}, true);
+  }
+}
+
+TEST(CollocatedGradient, ExactForLinearFieldsOnEveryNode) {
+  const NodeSets nodes = rectangle_lattice(1.0, 0.5, 0.05);
+  const OperatorOptions options = options_for(2, 0.75 * 0.05);
+  const CellList cells(nodes.sph_nodes, options.kernel.support_radius(options.smoothing_length));
+  StencilReport report;
+  const WeightTable table = build_collocated_gradient(nodes.sph_nodes, cells, options, {}, &report);
+  EXPECT_TRUE(report.degenerate_rows.empty());
+  expect_linear_exact(table, nodes.sph_nodes, nodes.sph_nodes, report, true);
+}
+
+TEST(CrossOperator, PerturbedLatticeStaysExactForLinearFields) {
+  NodeSets nodes = rectangle_lattice(1.0, 0.5, 0.05);
+  std::mt19937 generator(12345);
+  std::uniform_real_distribution<double> jitter(-0.1 * 0.05, 0.1 * 0.05);
+  for (PointCloud* cloud : {&nodes.sph_nodes, &nodes.stress_points})
+    for (int a = 0; a < 2; ++a)
+      for (double& x : cloud->position[a])
+        x += jitter(generator);
+  for (double eta : {1.0, 1.3}) {
+    const OperatorOptions options = options_for(2, eta * 0.05, 1);
+    const double support = options.kernel.support_radius(options.smoothing_length);
+    const CellList node_cells(nodes.sph_nodes, support);
+    const CellList point_cells(nodes.stress_points, support);
+    StencilReport forward_report, backward_report;
+    const WeightTable forward =
+        build_cross_operator(nodes.stress_points, node_cells, options, &forward_report);
+    const WeightTable backward =
+        build_cross_operator(nodes.sph_nodes, point_cells, options, &backward_report);
+    EXPECT_TRUE(forward_report.degenerate_rows.empty());
+    EXPECT_TRUE(backward_report.degenerate_rows.empty());
+    expect_linear_exact(forward, nodes.sph_nodes, nodes.stress_points, forward_report, true);
+    expect_linear_exact(backward, nodes.stress_points, nodes.sph_nodes, backward_report, true);
+  }
+}
+
+TEST(MirrorImages, NodesOnASymmetryPlaneGetFullStencilsWithParity) {
+  // Mirror plane y = 0 (bottom face). Even fields are functions of x (plus even functions of y);
+  // odd fields vanish on the plane. Their gradients must be exact on and near the plane.
+  const NodeSets nodes = rectangle_lattice(1.0, 0.5, 0.05);
+  OperatorOptions options = options_for(2, 0.75 * 0.05);
+  options.mirrors = {MirrorPlane{1, 0.0}};
+  const CellList cells(nodes.stress_points,
+                       options.kernel.support_radius(options.smoothing_length));
+  StencilReport report;
+  const WeightTable table = build_cross_operator(nodes.sph_nodes, cells, options, &report);
+  EXPECT_TRUE(table.has_reflections);
+
+  // Bottom-edge nodes (not the two bottom corners, which still miss a side) are now regular.
+  for (auto row : report.degenerate_rows)
+    EXPECT_GT(std::abs(nodes.sph_nodes.position[1][row]) +
+                  (nodes.sph_nodes.position[0][row] < 1e-9 ||
+                   nodes.sph_nodes.position[0][row] > 1.0 - 1e-9),
+              1e-9)
+        << "bottom-edge node " << row << " still degenerate";
+
+  const std::vector<LinearField> fields = {{2.0, {3.0, 0.0, 0.0}}, {0.0, {0.0, -4.0, 0.0}}};
+  const std::vector<Parity> parity = {kEven, vector_parity(1)};  // e.g. v_x and v_y
+  const FieldArray in = sample(nodes.stress_points, fields);
+  FieldArray values(2, nodes.sph_nodes.size()), gradient(4, nodes.sph_nodes.size());
+  apply_operator(table, in, parity, &values, &gradient);
+  std::vector<char> degenerate(nodes.sph_nodes.size(), 0);
+  for (auto r : report.degenerate_rows)
+    degenerate[static_cast<std::size_t>(r)] = 1;
+  int checked_on_plane = 0;
+  for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i) {
+    if (degenerate[i]) continue;
+    if (std::abs(nodes.sph_nodes.position[1][i]) < 1e-9) ++checked_on_plane;
+    for (int f = 0; f < 2; ++f)
+      for (int c = 0; c < 2; ++c)
+        EXPECT_NEAR(gradient(f * 2 + c, i), fields[f].k[c], 1e-11) << "node " << i;
+    EXPECT_NEAR(values(1, i), fields[1](nodes.sph_nodes.point(i)), 1e-12);  // odd: 0 on the plane
+  }
+  EXPECT_EQ(checked_on_plane, 21 - 2);
+}
+
+TEST(Degeneracy, EmptyAndSingleSourceStencilsAreReportedWithFiniteWeights) {
+  WeightTable table;
+  table.dimension = 2;
+  table.row_start.push_back(0);
+  const OperatorOptions options = options_for(2, 0.75);
+  EXPECT_FALSE(
+      append_row(table, {0.0, 0.0, 0.0}, {}, options, GradientReference::ShepardCentroid, -1));
+  const StencilSource single{0, 0, {0.5, 0.5, 0.0}, 1.0};
+  EXPECT_FALSE(append_row(table, {0.0, 0.0, 0.0}, std::span(&single, 1), options,
+                          GradientReference::ShepardCentroid, -1));
+  EXPECT_FALSE(append_row(table, {0.0, 0.0, 0.0}, std::span(&single, 1), options,
+                          GradientReference::Self, 1));
+  for (int a = 0; a < 3; ++a)
+    for (double w : table.gradient[a])
+      EXPECT_TRUE(std::isfinite(w));
+  for (double w : table.interpolation)
+    EXPECT_TRUE(std::isfinite(w));
+}
+
+}  // namespace
+}  // namespace rktsph
