@@ -91,6 +91,15 @@ double DrySolid::max_wave_speed() const {
   return speed;
 }
 
+double DrySolid::divergence_bound(int field) const {
+  // |v| = 10 c_p or |sigma| = 10 M means a strain of about 10 (docs/theory.md §2.5).
+  if (field < dimension()) return 10.0 * max_wave_speed();
+  double modulus = 0.0;
+  for (const auto& material : materials_)
+    modulus = std::max(modulus, material->elastic().constrained_modulus());
+  return 10.0 * modulus;
+}
+
 SymmetricTensor DrySolid::stress_tensor(const FieldArray& values, std::size_t i) const {
   SymmetricTensor sigma{};
   for (int c = 0; c < stress_count_; ++c)

@@ -48,6 +48,7 @@ class DrySolid final : public PhysicsModel {
   int velocity_field(int axis) const override { return axis < dimension() ? axis : -1; }
   int stress_field(int i, int j) const override;
   double max_wave_speed() const override;
+  double divergence_bound(int field) const override;
 
   void flux_rate(std::span<const std::int32_t> material, const FieldArray& gradient,
                  FieldArray& rate) const override;

@@ -39,6 +39,10 @@ class PhysicsModel {
   /// Largest wave speed of the model [m/s] (the drained P-wave speed), for the Courant rule.
   virtual double max_wave_speed() const = 0;
 
+  /// Magnitude beyond which field f can only come from a diverging run (a strain of order 10);
+  /// the loop stops there, while the output is still finite.
+  virtual double divergence_bound(int field) const = 0;
+
   /// Flux rate R at each point from the gradients (field f along axis c at f * dimension + c).
   /// `material[i]` is the material of point i; rate has field_count() fields.
   virtual void flux_rate(std::span<const std::int32_t> material, const FieldArray& gradient,

@@ -120,24 +120,27 @@ void Simulation::initialise_state() {
   conditions_->apply(0.0, state_.fields);
 }
 
-std::string Simulation::find_non_finite(const State& state) const {
+std::string Simulation::find_divergence(const State& state) const {
   const std::size_t n = nodes_.sph_nodes.size();
+  auto where = [&](std::size_t i) {
+    std::string text = fmt::format("SPH node {} (x = {:.6g}", i, nodes_.sph_nodes.position[0][i]);
+    if (nodes_.dimension > 1) text += fmt::format(", y = {:.6g}", nodes_.sph_nodes.position[1][i]);
+    return text + " m)";
+  };
   for (int f = 0; f < state.fields.field_count(); ++f) {
     const double* values = state.fields.field(f);
+    const double bound = model_->divergence_bound(f);
     for (std::size_t i = 0; i < n; ++i)
-      if (!std::isfinite(values[i])) {
-        std::string where = fmt::format("x = {:.6g}", nodes_.sph_nodes.position[0][i]);
-        if (nodes_.dimension > 1)
-          where += fmt::format(", y = {:.6g}", nodes_.sph_nodes.position[1][i]);
-        return fmt::format("field '{}' is not finite at SPH node {} ({} m)",
-                           model_->field_names()[static_cast<std::size_t>(f)], i, where);
-      }
+      if (!(std::abs(values[i]) <= bound))  // also catches NaN
+        return fmt::format("field '{}' = {:.4g} at {} (physical bound {:.3g})",
+                           model_->field_names()[static_cast<std::size_t>(f)], values[i], where(i),
+                           bound);
   }
   for (int k = 0; k < state.internal.field_count(); ++k)
     for (std::size_t i = 0; i < n; ++i)
       if (!std::isfinite(state.internal(k, i)))
-        return fmt::format("internal variable '{}' is not finite at SPH node {}",
-                           model_->internal_names()[static_cast<std::size_t>(k)], i);
+        return fmt::format("internal variable '{}' is not finite at {}",
+                           model_->internal_names()[static_cast<std::size_t>(k)], where(i));
   return {};
 }
 
@@ -149,7 +152,7 @@ RunStatus Simulation::run() {
   // Every step is checked; on divergence the observers keep the last good output on disk.
   for (long s = 0; s < total_steps_; ++s) {
     step_->advance(state_, time_step_);
-    const std::string problem = find_non_finite(state_);
+    const std::string problem = find_divergence(state_);
     if (!problem.empty()) {
       message_ =
           fmt::format("diverged at step {} (t = {:.6g} s): {}", state_.step, state_.time, problem);

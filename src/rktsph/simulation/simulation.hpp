@@ -41,8 +41,9 @@ class Simulation {
   explicit Simulation(CaseDescription description);
 
   void add_observer(Observer& observer) { observers_.push_back(&observer); }
-  /// Runs to the end time. A non-finite value stops the run with status Diverged and a message
-  /// naming the step, time, node, position and field; the state is then the last good one.
+  /// Runs to the end time. A value that is not finite or beyond the model's divergence bound stops
+  /// the run with status Diverged and a message naming the step, time, field, node and position;
+  /// the observers are not shown that state, so the last output written is the last good one.
   RunStatus run();
   const std::string& message() const { return message_; }
 
@@ -62,8 +63,9 @@ class Simulation {
 
  private:
   void initialise_state();
-  /// Index of the first non-finite value as (field name, node), or empty if all are finite.
-  std::string find_non_finite(const State& state) const;
+  /// Describes the first value that is not finite or beyond the model's divergence bound (field,
+  /// node, position), or returns an empty string.
+  std::string find_divergence(const State& state) const;
 
   CaseDescription description_;
   NodeSets nodes_;

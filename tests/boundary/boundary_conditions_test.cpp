@@ -1,0 +1,83 @@
+// Boundary conditions compiled from a case: which faces are free, where the stress increments are
+// projected (prototype R2), mirror planes, traction faces, and the errors for impossible input.
+#include "rktsph/boundary/boundary_conditions.hpp"
+
+#include <gtest/gtest.h>
+
+#include "rktsph/case/case_reader.hpp"
+#include "rktsph/simulation/simulation.hpp"
+
+namespace rktsph {
+namespace {
+
+const char* kBlock = R"(
+name: block
+dimension: 2
+geometry:
+  spacing: 1.0
+  shapes: [{rectangle: {min: [0, 0], max: [6, 4]}, material: soil}]
+materials:
+  soil: {model: linear_elastic, density: 2000.0, young_modulus: 1.0e7, poisson_ratio: 0.3}
+groups:
+  footing: {box: {min: [0, 4], max: [2, 4]}}
+boundary_conditions:
+  - {group: xmin, fixed: true}
+  - {group: ymin, roller: y}
+  - {group: footing, traction: {y: -1000.0}}
+time: {end: 0.01}
+)";
+
+std::int32_t node_at(const Simulation& simulation, double x, double y) {
+  return simulation.nodes().node_at(
+      {static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), 0});
+}
+
+TEST(BoundaryConditions, FacesMirrorsAndProjections) {
+  Simulation simulation(read_case_text(kBlock, "block.yaml"));
+  const BoundaryConditions& conditions = simulation.boundary_conditions();
+  ASSERT_EQ(conditions.mirror_planes().size(), 1u);
+  EXPECT_EQ(conditions.mirror_planes()[0].axis, 1);
+  // The bottom is a mirror plane, not a face.
+  EXPECT_TRUE(conditions.face_normals(node_at(simulation, 3, 0)).empty());
+  // The free right face is projected along x; the fixed left face is not (its stress is a
+  // reaction); the fixed-free corner at the top left is projected along y (its top face is free).
+  EXPECT_EQ(conditions.projected_axes(node_at(simulation, 6, 2)), 1u);
+  EXPECT_EQ(conditions.projected_axes(node_at(simulation, 0, 2)), 0u);
+  EXPECT_EQ(conditions.projected_axes(node_at(simulation, 0, 4)), 2u);
+  EXPECT_EQ(conditions.projected_axes(node_at(simulation, 6, 4)), 3u);  // free-free corner
+}
+
+TEST(BoundaryConditions, TractionIsImposedAsSigmaDotN) {
+  Simulation simulation(read_case_text(kBlock, "block.yaml"));
+  FieldArray fields(simulation.model().field_count(), simulation.nodes().sph_nodes.size());
+  std::fill(fields.data().begin(), fields.data().end(), 123.0);
+  simulation.boundary_conditions().apply(0.0, fields);
+  const int syy = simulation.model().stress_field(1, 1),
+            sxy = simulation.model().stress_field(0, 1);
+  // Top face, outward normal +y: sigma_yy = t_y = -1000 under the footing, 0 beyond it.
+  EXPECT_DOUBLE_EQ(fields(syy, static_cast<std::size_t>(node_at(simulation, 1, 4))), -1000.0);
+  EXPECT_DOUBLE_EQ(fields(sxy, static_cast<std::size_t>(node_at(simulation, 1, 4))), 0.0);
+  EXPECT_DOUBLE_EQ(fields(syy, static_cast<std::size_t>(node_at(simulation, 4, 4))), 0.0);
+  // Interior untouched; fixed face velocities zero.
+  EXPECT_DOUBLE_EQ(fields(syy, static_cast<std::size_t>(node_at(simulation, 3, 2))), 123.0);
+  EXPECT_DOUBLE_EQ(fields(0, static_cast<std::size_t>(node_at(simulation, 0, 2))), 0.0);
+  EXPECT_DOUBLE_EQ(fields(1, static_cast<std::size_t>(node_at(simulation, 0, 2))), 0.0);
+  // The roller: v_y = 0 and sigma_xy = 0 on the mirror plane.
+  EXPECT_DOUBLE_EQ(fields(1, static_cast<std::size_t>(node_at(simulation, 3, 0))), 0.0);
+  EXPECT_DOUBLE_EQ(fields(sxy, static_cast<std::size_t>(node_at(simulation, 3, 0))), 0.0);
+}
+
+TEST(BoundaryConditions, TractionOnAGroupWithNoCommonFaceIsAnError) {
+  std::string text = kBlock;
+  text.replace(text.find("box: {min: [0, 4], max: [2, 4]}"), 31, "box: {min: [0, 3], max: [2, 4]}");
+  EXPECT_THROW(Simulation(read_case_text(text, "block.yaml")), InputError);
+}
+
+TEST(BoundaryConditions, RollerOffAPlaneIsAnError) {
+  std::string text = kBlock;
+  text.replace(text.find("{group: ymin, roller: y}"), 24, "{group: footing, roller: x}");
+  EXPECT_THROW(Simulation(read_case_text(text, "block.yaml")), InputError);
+}
+
+}  // namespace
+}  // namespace rktsph

@@ -1,0 +1,147 @@
+// Geometry to nodes (docs/theory.md §3.1): lattice filling of segments, rectangles and polygons,
+// stress points at cell centres, materials by shape order, and node groups.
+#include "rktsph/geometry/node_sets.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace rktsph {
+namespace {
+
+ShapeSpec rectangle(double x0, double y0, double x1, double y1, const std::string& material) {
+  ShapeSpec shape;
+  shape.kind = ShapeSpec::Kind::Rectangle;
+  shape.vertices = {{x0, y0, 0.0}, {x1, y1, 0.0}};
+  shape.material = material;
+  return shape;
+}
+
+TEST(NodeSets, SegmentHasNodesAtBothEndsAndMidpointStressPoints) {
+  GeometrySpec geometry;
+  geometry.spacing = 0.5;
+  ShapeSpec segment;
+  segment.kind = ShapeSpec::Kind::Segment;
+  segment.vertices = {{2.0, 0.0, 0.0}, {12.0, 0.0, 0.0}};
+  segment.material = "soil";
+  geometry.shapes = {segment};
+  const NodeSets nodes = build_node_sets(geometry, 1, {"soil"});
+  ASSERT_EQ(nodes.sph_nodes.size(), 21u);
+  ASSERT_EQ(nodes.stress_points.size(), 20u);
+  EXPECT_DOUBLE_EQ(nodes.sph_nodes.position[0].front(), 2.0);
+  EXPECT_DOUBLE_EQ(nodes.sph_nodes.position[0].back(), 12.0);
+  EXPECT_DOUBLE_EQ(nodes.stress_points.position[0][3], 2.0 + 3.5 * 0.5);
+  EXPECT_DOUBLE_EQ(nodes.sph_nodes.volume[0], 0.5);
+}
+
+TEST(NodeSets, RectangleCountsAndCellCentres) {
+  GeometrySpec geometry;
+  geometry.spacing = 0.04;
+  geometry.shapes = {rectangle(0.0, 0.0, 1.0, 2.0, "soil")};
+  const NodeSets nodes = build_node_sets(geometry, 2, {"soil"});
+  EXPECT_EQ(nodes.sph_nodes.size(), 26u * 51u);
+  EXPECT_EQ(nodes.stress_points.size(), 25u * 50u);
+  // Every stress point is the centre of the four nodes around it.
+  for (std::size_t p = 0; p < nodes.stress_points.size(); ++p) {
+    const LatticeIndex& corner = nodes.stress_point_index[p];
+    double cx = 0.0, cy = 0.0;
+    for (int dj = 0; dj <= 1; ++dj)
+      for (int di = 0; di <= 1; ++di) {
+        const std::int32_t node = nodes.node_at({corner[0] + di, corner[1] + dj, 0});
+        ASSERT_GE(node, 0);
+        cx += 0.25 * nodes.sph_nodes.position[0][node];
+        cy += 0.25 * nodes.sph_nodes.position[1][node];
+      }
+    EXPECT_NEAR(nodes.stress_points.position[0][p], cx, 1e-12);
+    EXPECT_NEAR(nodes.stress_points.position[1][p], cy, 1e-12);
+  }
+  EXPECT_NEAR(nodes.sph_nodes.volume[0], 0.04 * 0.04, 1e-18);
+}
+
+TEST(NodeSets, ConcavePolygonAndMaterialOverride) {
+  // An L-shaped block (a vertical cut) with a weak square overriding the corner material.
+  GeometrySpec geometry;
+  geometry.spacing = 1.0;
+  ShapeSpec outline;
+  outline.kind = ShapeSpec::Kind::Polygon;
+  outline.vertices = {{0, 0, 0}, {20, 0, 0}, {20, 5, 0}, {10, 5, 0}, {10, 15, 0}, {0, 15, 0}};
+  outline.material = "soil";
+  geometry.shapes = {outline, rectangle(0.0, 0.0, 1.0, 1.0, "weak")};
+  const NodeSets nodes = build_node_sets(geometry, 2, {"soil", "weak"});
+  // Nodes: 21 x 6 (bottom band) + 11 x 10 (column above y = 5).
+  EXPECT_EQ(nodes.sph_nodes.size(), 21u * 6u + 11u * 10u);
+  // Cells: 20 x 5 + 10 x 10; none in the missing upper-right quadrant.
+  EXPECT_EQ(nodes.stress_points.size(), 20u * 5u + 10u * 10u);
+  for (std::size_t p = 0; p < nodes.stress_points.size(); ++p)
+    EXPECT_FALSE(nodes.stress_points.position[0][p] > 10.0 &&
+                 nodes.stress_points.position[1][p] > 5.0);
+  int weak = 0;
+  for (std::int32_t m : nodes.node_material)
+    weak += m == 1;
+  EXPECT_EQ(weak, 4);  // the four nodes of the unit square
+  int weak_cells = 0;
+  for (std::int32_t m : nodes.stress_point_material)
+    weak_cells += m == 1;
+  EXPECT_EQ(weak_cells, 1);
+}
+
+TEST(NodeSets, VertexOffTheLatticeIsAnInputError) {
+  GeometrySpec geometry;
+  geometry.spacing = 0.3;
+  geometry.shapes = {rectangle(0.0, 0.0, 1.0, 0.9, "soil")};
+  geometry.shapes[0].where = {"case.yaml", 7, 5};
+  try {
+    build_node_sets(geometry, 2, {"soil"});
+    FAIL() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.location().line, 7);
+    EXPECT_NE(std::string(error.what()).find("not on the lattice"), std::string::npos);
+  }
+}
+
+TEST(NodeGroups, EdgesBoxesPolygonsAndPoints) {
+  GeometrySpec geometry;
+  geometry.spacing = 1.0;
+  geometry.shapes = {rectangle(0.0, 0.0, 10.0, 4.0, "soil")};
+  const NodeSets nodes = build_node_sets(geometry, 2, {"soil"});
+  GroupSpec box;
+  box.name = "footing";
+  box.kind = GroupSpec::Kind::Box;
+  box.min = {0.0, 4.0, 0.0};
+  box.max = {3.0, 4.0, 0.0};
+  GroupSpec triangle;
+  triangle.name = "wedge";
+  triangle.kind = GroupSpec::Kind::Polygon;
+  triangle.vertices = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}};
+  GroupSpec point;
+  point.name = "probe";
+  point.kind = GroupSpec::Kind::Point;
+  point.point = {5.2, 1.9, 0.0};
+  const auto groups = select_groups(nodes, {box, triangle, point});
+  EXPECT_EQ(groups.at("all").size(), 55u);
+  EXPECT_EQ(groups.at("xmin").size(), 5u);
+  EXPECT_EQ(groups.at("ymax").size(), 11u);
+  EXPECT_EQ(groups.at("footing").size(), 4u);
+  EXPECT_EQ(groups.at("wedge").size(), 6u);  // (0,0) (1,0) (2,0) (0,1) (1,1) (0,2)
+  ASSERT_EQ(groups.at("probe").size(), 1u);
+  const auto probe = static_cast<std::size_t>(groups.at("probe")[0]);
+  EXPECT_DOUBLE_EQ(nodes.sph_nodes.position[0][probe], 5.0);
+  EXPECT_DOUBLE_EQ(nodes.sph_nodes.position[1][probe], 2.0);
+}
+
+TEST(NodeGroups, EmptySelectionIsAnInputErrorAtTheGroup) {
+  GeometrySpec geometry;
+  geometry.spacing = 1.0;
+  geometry.shapes = {rectangle(0.0, 0.0, 10.0, 4.0, "soil")};
+  const NodeSets nodes = build_node_sets(geometry, 2, {"soil"});
+  GroupSpec outside;
+  outside.name = "nowhere";
+  outside.kind = GroupSpec::Kind::Box;
+  outside.min = {20.0, 20.0, 0.0};
+  outside.max = {30.0, 30.0, 0.0};
+  outside.where = {"case.yaml", 12, 3};
+  EXPECT_THROW(select_groups(nodes, {outside}), InputError);
+}
+
+}  // namespace
+}  // namespace rktsph
