@@ -338,6 +338,26 @@ void DrySolid::project_normal_stress_increment(std::int32_t material, std::uint8
   }
 }
 
+void DrySolid::add_artificial_viscosity(std::span<const std::int32_t> material,
+                                        const FieldArray& gradient, double alpha_dx,
+                                        FieldArray& values) const {
+  const auto n = static_cast<std::int64_t>(material.size());
+  const int d = dimension();
+  const int xx = stress_field(0, 0), yy = stress_field(1, 1), xy = stress_field(0, 1);
+  const double c = max_wave_speed();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    // q = alpha rho c_p dx eps_dot (docs/theory.md §2.7); c_p of the stiffest material keeps the
+    // coefficient uniform across material interfaces.
+    const double viscosity = alpha_dx * materials_[material[i]]->density() * c;
+    values.field(xx)[i] += viscosity * gradient.field(0)[i];
+    if (d >= 2) {
+      values.field(yy)[i] += viscosity * gradient.field(1 * d + 1)[i];
+      values.field(xy)[i] += viscosity * 0.5 * (gradient.field(0 * d + 1)[i] + gradient.field(1 * d + 0)[i]);
+    }
+  }
+}
+
 void DrySolid::initial_internal(std::int32_t material, FieldArray& internal, std::size_t i) const {
   const Material& m = *materials_[material];
   double kappa[kMaxInternal] = {};

@@ -57,6 +57,9 @@ class DrySolid final : public PhysicsModel {
   void project_normal_stress_increment(std::int32_t material, std::uint8_t normal_axes,
                                        std::span<const double> start, FieldArray& values,
                                        std::size_t i) const override;
+  void add_artificial_viscosity(std::span<const std::int32_t> material,
+                                const FieldArray& gradient, double alpha_dx,
+                                FieldArray& values) const override;
   void initial_internal(std::int32_t material, FieldArray& internal, std::size_t i) const override;
 
   Kinematics kinematics() const { return kinematics_; }

@@ -60,6 +60,12 @@ class PhysicsModel {
                                                std::span<const double> start, FieldArray& values,
                                                std::size_t i) const = 0;
 
+  /// Adds the artificial viscous stress q = alpha rho c_p dx sym(grad v) (prototype R7) to the
+  /// half-step stresses of points [0, material.size()), which feed only the momentum corrector.
+  virtual void add_artificial_viscosity(std::span<const std::int32_t> material,
+                                        const FieldArray& gradient, double alpha_dx,
+                                        FieldArray& values) const = 0;
+
   /// Initial internal variables of point i.
   virtual void initial_internal(std::int32_t material, FieldArray& internal,
                                 std::size_t i) const = 0;

@@ -136,6 +136,7 @@ StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& opt
   // wider support, so that linear fields pass unchanged up to the boundary (prototype R6).
   ops.hourglass_filter = options.hourglass_filter && d >= 2 && options.hourglass_kappa > 0.0;
   ops.hourglass_kappa = options.hourglass_kappa;
+  ops.viscosity_length = options.artificial_viscosity * dx;
   if (ops.hourglass_filter) {
     OperatorOptions filter_options = operator_options;
     filter_options.smoothing_length = options.hourglass_h_over_dx * dx;
@@ -202,6 +203,9 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
   model_.flux_rate(nodes_.stress_point_material, point_gradient_, point_rate_);
   model_.advance(nodes_.stress_point_material, point_rate_, state.time, 0.5 * dt, half_step_,
                  point_internal_);
+  if (operators_.viscosity_length > 0.0)
+    model_.add_artificial_viscosity(nodes_.stress_point_material, point_gradient_,
+                                    operators_.viscosity_length, half_step_);
 }
 
 void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
@@ -224,6 +228,9 @@ void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
   model_.advance(boundary_material_, boundary_rate_, state.time, 0.5 * dt, boundary_values_,
                  boundary_internal_);
   project_free_faces(boundary_start_, boundary_values_, true);
+  if (operators_.viscosity_length > 0.0)  // before the BCs: a free face stays traction-free
+    model_.add_artificial_viscosity(boundary_material_, boundary_gradient_,
+                                    operators_.viscosity_length, boundary_values_);
   conditions_.apply(state.time + 0.5 * dt, boundary_values_, operators_.node_to_boundary_row);
   const std::size_t nv = nodes_.stress_points.size();
   for (std::size_t r = 0; r < boundary.size(); ++r)

@@ -24,6 +24,7 @@ struct StepOptions {
   bool hourglass_filter = true;  // ignored in 1D, where midpoint stress points have no such mode
   double hourglass_kappa = 0.1;
   double hourglass_h_over_dx = 1.3;
+  double artificial_viscosity = 0.0;  // alpha of prototype R7; 0 = off
 };
 
 /// The operator tables of the step and the classification of nodes they imply.
@@ -37,6 +38,7 @@ struct StepOperators {
   double hourglass_kappa = 0.0;
   WeightTable filter_to_points;  ///< first-order round trip of the filter (prototype R6)
   WeightTable filter_to_nodes;
+  double viscosity_length = 0.0;  ///< alpha * dx of the artificial viscosity (0 = off)
 };
 
 /// Builds the tables; throws RunError naming the node if a stencil cannot be made regular.

@@ -1,0 +1,177 @@
+#include "rktsph/materials/perzyna_modified_cam_clay.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "rktsph/materials/linear_elastic.hpp"
+
+namespace rktsph {
+
+PerzynaModifiedCamClay::PerzynaModifiedCamClay(double density, ElasticConstants elastic,
+                                               PerzynaModifiedCamClayParameters parameters)
+    : Material(density, elastic),
+      parameters_(parameters),
+      sin_friction_angle_(std::sin(parameters.friction_angle * std::numbers::pi / 180.0)) {}
+
+std::unique_ptr<Material> PerzynaModifiedCamClay::from_parameters(ParameterReader& reader) {
+  constexpr double infinity = std::numeric_limits<double>::infinity();
+  const ElasticParameters elastic = read_elastic_parameters(reader);
+  PerzynaModifiedCamClayParameters p;
+  p.friction_angle = reader.required("friction_angle", 0.0, 90.0, true, true);
+  p.swelling_index = reader.required("swelling_index", 0.0, infinity, true);
+  // lambda_c > kappa_c, otherwise the hardening factor (1 + e0)/(lambda_c - kappa_c) is not
+  // positive and finite.
+  p.compression_index = reader.required("compression_index", p.swelling_index, infinity, true);
+  p.initial_void_ratio = reader.required("initial_void_ratio", 0.0, infinity, true);
+  p.preconsolidation_pressure = reader.required("preconsolidation_pressure", 0.0, infinity, true);
+  p.fluidity = reader.required("fluidity", 0.0, infinity, true);
+  p.exponent = reader.optional("exponent", 1.0, 0.0, infinity, true);
+  return std::make_unique<PerzynaModifiedCamClay>(elastic.density, elastic.elastic, p);
+}
+
+std::vector<std::string> PerzynaModifiedCamClay::internal_names() const {
+  return {"eps_vp", "preconsolidation_pressure"};
+}
+
+void PerzynaModifiedCamClay::initial_internal(std::span<double> internal) const {
+  internal[kEquivalentStrain] = 0.0;
+  internal[kPreconsolidationPressure] = parameters_.preconsolidation_pressure;
+}
+
+double PerzynaModifiedCamClay::hardening_factor() const {
+  return (1.0 + parameters_.initial_void_ratio) /
+         (parameters_.compression_index - parameters_.swelling_index);
+}
+
+double PerzynaModifiedCamClay::critical_state_ratio(double sin_3theta) const {
+  return 6.0 * sin_friction_angle_ / (3.0 - sin_friction_angle_ * sin_3theta);
+}
+
+double PerzynaModifiedCamClay::yield_function(const StressInvariants& invariants,
+                                              double preconsolidation_pressure) const {
+  const double ratio = critical_state_ratio(invariants.sin_3theta);
+  const double p = invariants.pressure;
+  return invariants.q * invariants.q + ratio * ratio * p * (p - preconsolidation_pressure);
+}
+
+namespace {
+/// <x>^N with the Macaulay bracket applied first (spec §1.3).
+double macaulay_power(double x, double exponent) {
+  if (x <= 0.0) return 0.0;
+  return exponent == 1.0 ? x : std::pow(x, exponent);
+}
+}  // namespace
+
+double PerzynaModifiedCamClay::overstress(const SymmetricTensor& stress,
+                                          std::span<const double> internal) const {
+  const double pc = internal[kPreconsolidationPressure];
+  return macaulay_power(yield_function(stress_invariants(stress), pc) / (pc * pc),
+                        parameters_.exponent);
+}
+
+FlowCoefficients PerzynaModifiedCamClay::flow_coefficients(const StressInvariants& invariants,
+                                                           double preconsolidation_pressure) const {
+  const double pc = preconsolidation_pressure;
+  const double p = invariants.pressure;
+  const double ratio = critical_state_ratio(invariants.sin_3theta);
+  FlowCoefficients c;
+  // dg/dI1 = dg/dp dp/dI1 with dg/dp = M^2 (2p - pc)/pc and dp/dI1 = -1/3.
+  c.c1 = -ratio * ratio * (2.0 * p - pc) / (3.0 * pc);
+  // dg/dsqrtJ2 = dg/dq sqrt3 = 6 sqrtJ2 / pc.
+  const double root_j2 = std::sqrt(invariants.j2);
+  c.c2 = 6.0 * root_j2 / pc;
+  if (!invariants.lode_defined) return c;
+  // dg/dtheta = (2 M p (p - pc)/pc) dM/dtheta and dM/dtheta carries cos 3theta, which cancels the
+  // tan 3theta and 1/cos 3theta of C2 and C3 (seed eq. 2.65), so nothing is singular at +-30°.
+  const double denominator = 3.0 - sin_friction_angle_ * invariants.sin_3theta;
+  const double theta_factor = ratio * p * (p - pc) / pc * 18.0 * sin_friction_angle_ *
+                              sin_friction_angle_ / (denominator * denominator);
+  c.c2 -= invariants.sin_3theta / root_j2 * 2.0 * theta_factor;
+  c.c3 = -std::sqrt(3.0) / (invariants.j2 * root_j2) * theta_factor;
+  return c;
+}
+
+SymmetricTensor PerzynaModifiedCamClay::flow_direction(const SymmetricTensor& stress,
+                                                       double preconsolidation_pressure) const {
+  const StressInvariants invariants = stress_invariants(stress);
+  return flow_vector(invariants, flow_coefficients(invariants, preconsolidation_pressure));
+}
+
+void PerzynaModifiedCamClay::viscoplastic_rate(const SymmetricTensor& stress,
+                                               std::span<const double> internal,
+                                               SymmetricTensor& strain_rate,
+                                               std::span<double> internal_rate) const {
+  const double pc = internal[kPreconsolidationPressure];
+  const StressInvariants invariants = stress_invariants(stress);
+  const double psi =
+      macaulay_power(yield_function(invariants, pc) / (pc * pc), parameters_.exponent);
+  strain_rate.fill(0.0);
+  internal_rate[kEquivalentStrain] = 0.0;
+  internal_rate[kPreconsolidationPressure] = 0.0;
+  if (psi <= 0.0) return;
+  const double flow_magnitude = parameters_.fluidity * psi;
+  const SymmetricTensor direction = flow_vector(invariants, flow_coefficients(invariants, pc));
+  for (int i = 0; i < 6; ++i)
+    strain_rate[i] = flow_magnitude * direction[i];
+  internal_rate[kEquivalentStrain] = equivalent_strain_rate(strain_rate);
+  // Seed eq. 2.54 with compression-positive volumetric strain, turned to tension positive.
+  internal_rate[kPreconsolidationPressure] = -hardening_factor() * pc * trace(strain_rate);
+}
+
+PerzynaModifiedCamClay::SourceState PerzynaModifiedCamClay::source(const SourceState& state) const {
+  const std::array<double, 2> internal = {0.0, state.preconsolidation_pressure};
+  std::array<double, 2> internal_rate{};
+  SymmetricTensor strain_rate;
+  viscoplastic_rate(state.stress, internal, strain_rate, internal_rate);
+  SymmetricTensor stress_rate = apply_elastic_stiffness(elastic(), strain_rate);
+  for (double& component : stress_rate)
+    component = -component;
+  return {stress_rate, internal_rate[kPreconsolidationPressure]};
+}
+
+namespace {
+/// Euclidean norm of (stress, pc) with a tensor norm for the stress; both parts are in Pa.
+double state_norm(const SymmetricTensor& stress, double preconsolidation_pressure) {
+  return std::sqrt(double_contraction(stress, stress) +
+                   preconsolidation_pressure * preconsolidation_pressure);
+}
+}  // namespace
+
+double PerzynaModifiedCamClay::source_stiffness(const SymmetricTensor& stress,
+                                                std::span<const double> internal) const {
+  // The source is -gamma Psi (D:m, A pc tr m) with A = hardening_factor(): it moves the state
+  // along d = (D:m, A pc tr m). Its Jacobian is dominated by the rank-one part
+  // -gamma d (x) dPsi/dy, whose eigenvalue is -gamma dPsi/dy . d, so the difference quotient of
+  // the source along d measures the relaxation rate. A second quotient along (D:m, 0), the stress
+  // alone, is also taken: on the dry side (p < pc/2) the hardening term cancels part of the
+  // first one, while the stress still relaxes at its own rate. The larger of the two is returned.
+  const double pc = internal[kPreconsolidationPressure];
+  const SymmetricTensor direction = flow_direction(stress, pc);
+  const SymmetricTensor stress_direction = apply_elastic_stiffness(elastic(), direction);
+  const double hardening_direction = hardening_factor() * pc * trace(direction);
+  const double step = kStiffnessStepRatio * pc;
+  const SourceState base{stress, pc};
+  const SourceState base_source = source(base);
+
+  auto quotient = [&](double pc_direction) {
+    const double length = state_norm(stress_direction, pc_direction);
+    if (!(length > 0.0)) return 0.0;
+    SourceState moved = base;
+    for (int i = 0; i < 6; ++i)
+      moved.stress[i] += step * stress_direction[i] / length;
+    moved.preconsolidation_pressure += step * pc_direction / length;
+    const SourceState moved_source = source(moved);
+    SymmetricTensor stress_change;
+    for (int i = 0; i < 6; ++i)
+      stress_change[i] = moved_source.stress[i] - base_source.stress[i];
+    return state_norm(stress_change, moved_source.preconsolidation_pressure -
+                                         base_source.preconsolidation_pressure) /
+           step;
+  };
+  return std::max(quotient(hardening_direction), quotient(0.0));
+}
+
+}  // namespace rktsph

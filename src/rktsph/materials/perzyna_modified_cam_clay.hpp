@@ -1,0 +1,86 @@
+// Perzyna viscoplasticity with the Modified Cam-Clay ellipse (docs/theory.md §1.3, §1.5; spec
+// algorithm.md §1.5 and Q5):
+//
+//   f = q^2 + M(theta)^2 p (p - pc),  M(theta) = 6 sin(phi) / (3 - sin(phi) sin 3theta),
+//   Psi = <f / pc^2>^N  (zero exactly on the ellipse, Q5),
+//   eps_vp_rate = fluidity Psi m,  m = dg/dstress with g = f / pc (associated, seed eq. 2.58),
+//   pc_rate = -((1 + e0) / (lambda_c - kappa_c)) pc tr(eps_vp_rate)  (tension-positive strain).
+//
+// Elasticity is linear (constant E, nu) and the void ratio is held at e0.
+#pragma once
+
+#include "rktsph/materials/invariants.hpp"
+#include "rktsph/materials/material.hpp"
+#include "rktsph/materials/parameter_reader.hpp"
+
+namespace rktsph {
+
+struct PerzynaModifiedCamClayParameters {
+  double friction_angle = 0.0;             // phi [deg], in (0, 90)
+  double compression_index = 0.0;          // lambda_c [-], > kappa_c
+  double swelling_index = 0.0;             // kappa_c [-], > 0
+  double initial_void_ratio = 0.0;         // e0 [-], > 0
+  double preconsolidation_pressure = 0.0;  // pc0 [Pa], > 0
+  double fluidity = 0.0;                   // gamma [1/s], > 0
+  double exponent = 1.0;                   // N [-], > 0
+};
+
+class PerzynaModifiedCamClay final : public Material {
+ public:
+  // Indices of the internal variables.
+  static constexpr int kEquivalentStrain = 0;          // "eps_vp" [-]
+  static constexpr int kPreconsolidationPressure = 1;  // "preconsolidation_pressure" [Pa]
+
+  PerzynaModifiedCamClay(double density, ElasticConstants elastic,
+                         PerzynaModifiedCamClayParameters parameters);
+  /// Keys: density, young_modulus, poisson_ratio, friction_angle, compression_index,
+  /// swelling_index, initial_void_ratio, preconsolidation_pressure, fluidity, exponent (1).
+  static std::unique_ptr<Material> from_parameters(ParameterReader& reader);
+
+  std::string model_name() const override { return "perzyna_modified_cam_clay"; }
+  int internal_count() const override { return 2; }
+  std::vector<std::string> internal_names() const override;
+  void initial_internal(std::span<double> internal) const override;
+  bool is_elastic() const override { return false; }
+  void viscoplastic_rate(const SymmetricTensor& stress, std::span<const double> internal,
+                         SymmetricTensor& strain_rate,
+                         std::span<double> internal_rate) const override;
+  /// One-sided finite difference of the source of (stress, pc) along the direction in which the
+  /// source moves them; see the .cpp for the two directions used. Positive whenever Psi > 0.
+  double source_stiffness(const SymmetricTensor& stress,
+                          std::span<const double> internal) const override;
+
+  const PerzynaModifiedCamClayParameters& parameters() const { return parameters_; }
+  /// M(theta) from sin 3theta (spec §1.5); 6 sin(phi)/(3 - sin(phi)) in triaxial compression.
+  double critical_state_ratio(double sin_3theta) const;
+  /// f = q^2 + M^2 p (p - pc) [Pa^2]: < 0 inside the ellipse, 0 on it.
+  double yield_function(const StressInvariants& invariants, double preconsolidation_pressure) const;
+  /// Psi = <f / pc^2>^N.
+  double overstress(const SymmetricTensor& stress, std::span<const double> internal) const;
+  /// C1, C2, C3 of g = f / pc (spec §1.5, seed eq. 2.65). The theta terms are dropped where the
+  /// Lode angle is undefined (StressInvariants::lode_defined).
+  FlowCoefficients flow_coefficients(const StressInvariants& invariants,
+                                     double preconsolidation_pressure) const;
+  /// m = dg/dstress.
+  SymmetricTensor flow_direction(const SymmetricTensor& stress,
+                                 double preconsolidation_pressure) const;
+  /// (1 + e0) / (lambda_c - kappa_c).
+  double hardening_factor() const;
+
+  /// Finite-difference step of source_stiffness relative to pc. For N < 1 it also caps the
+  /// stiffness near Psi = 0, like PerzynaVonMises::kOverstressFloor.
+  static constexpr double kStiffnessStepRatio = 1e-6;
+
+ private:
+  struct SourceState {
+    SymmetricTensor stress;
+    double preconsolidation_pressure;
+  };
+  /// (stress_rate, pc_rate) of the source at a state: (-D^e : eps_vp_rate, pc_rate).
+  SourceState source(const SourceState& state) const;
+
+  PerzynaModifiedCamClayParameters parameters_;
+  double sin_friction_angle_;
+};
+
+}  // namespace rktsph

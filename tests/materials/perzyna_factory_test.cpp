@@ -1,0 +1,141 @@
+// Both Perzyna materials built by name through create_material, with defaults, and the located
+// InputError for missing, out-of-range and unknown keys (docs/input-reference.md, materials).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "rktsph/core/error.hpp"
+#include "rktsph/materials/material_factory.hpp"
+#include "rktsph/materials/perzyna_modified_cam_clay.hpp"
+#include "rktsph/materials/perzyna_von_mises.hpp"
+
+namespace rktsph {
+namespace {
+
+SourceLocation at_line(int line) {
+  return SourceLocation{"case.yaml", line, 5};
+}
+
+ParameterBlock von_mises_block() {
+  ParameterBlock block;
+  block.path = "materials.soil";
+  block.where = at_line(10);
+  block.words["model"] = {"perzyna_von_mises", at_line(11)};
+  block.values["density"] = {2000.0, at_line(12)};
+  block.values["young_modulus"] = {10e6, at_line(13)};
+  block.values["poisson_ratio"] = {0.3, at_line(14)};
+  block.values["yield_stress"] = {50e3, at_line(15)};
+  block.values["fluidity"] = {4.0, at_line(16)};
+  return block;
+}
+
+ParameterBlock cam_clay_block() {
+  ParameterBlock block;
+  block.path = "materials.clay";
+  block.where = at_line(20);
+  block.words["model"] = {"perzyna_modified_cam_clay", at_line(21)};
+  block.values["density"] = {1800.0, at_line(22)};
+  block.values["young_modulus"] = {8e6, at_line(23)};
+  block.values["poisson_ratio"] = {0.25, at_line(24)};
+  block.values["friction_angle"] = {25.0, at_line(25)};
+  block.values["compression_index"] = {0.2, at_line(26)};
+  block.values["swelling_index"] = {0.04, at_line(27)};
+  block.values["initial_void_ratio"] = {0.9, at_line(28)};
+  block.values["preconsolidation_pressure"] = {150e3, at_line(29)};
+  block.values["fluidity"] = {0.5, at_line(30)};
+  return block;
+}
+
+/// The InputError thrown by create_material, or a test failure if none is thrown.
+InputError error_of(const ParameterBlock& block) {
+  try {
+    create_material(block);
+  } catch (const InputError& error) {
+    return error;
+  }
+  ADD_FAILURE() << "no InputError for " << block.path;
+  return InputError({}, "", "", "", "");
+}
+
+TEST(PerzynaFactory, BuildsVonMisesWithDefaults) {
+  const auto material = create_material(von_mises_block());
+  ASSERT_EQ(material->model_name(), "perzyna_von_mises");
+  EXPECT_FALSE(material->is_elastic());
+  EXPECT_EQ(material->internal_names(), (std::vector<std::string>{"eps_vp", "yield_stress"}));
+  const auto* von_mises = dynamic_cast<const PerzynaVonMises*>(material.get());
+  ASSERT_NE(von_mises, nullptr);
+  // Defaults of the brief: H = 0, N = 1, minimum yield stress 1 % of Y0.
+  EXPECT_EQ(von_mises->parameters().yield_stress, 50e3);
+  EXPECT_EQ(von_mises->parameters().hardening_modulus, 0.0);
+  EXPECT_EQ(von_mises->parameters().exponent, 1.0);
+  EXPECT_EQ(von_mises->parameters().minimum_yield_stress, 500.0);
+  EXPECT_EQ(von_mises->parameters().fluidity, 4.0);
+  EXPECT_EQ(material->density(), 2000.0);
+  std::vector<double> internal(2);
+  material->initial_internal(internal);
+  EXPECT_EQ(internal, (std::vector<double>{0.0, 50e3}));
+}
+
+TEST(PerzynaFactory, BuildsModifiedCamClay) {
+  ParameterBlock block = cam_clay_block();
+  block.values["exponent"] = {2.0, at_line(31)};
+  const auto material = create_material(block);
+  ASSERT_EQ(material->model_name(), "perzyna_modified_cam_clay");
+  EXPECT_EQ(material->internal_names(),
+            (std::vector<std::string>{"eps_vp", "preconsolidation_pressure"}));
+  const auto* cam_clay = dynamic_cast<const PerzynaModifiedCamClay*>(material.get());
+  ASSERT_NE(cam_clay, nullptr);
+  EXPECT_EQ(cam_clay->parameters().exponent, 2.0);
+  EXPECT_EQ(cam_clay->parameters().swelling_index, 0.04);
+  // (1 + e0)/(lambda - kappa) = 1.9 / 0.16.
+  EXPECT_NEAR(cam_clay->hardening_factor(), 1.9 / 0.16, 1e-12);
+  std::vector<double> internal(2);
+  material->initial_internal(internal);
+  EXPECT_EQ(internal, (std::vector<double>{0.0, 150e3}));
+}
+
+TEST(PerzynaFactory, MissingKeyNamesItsPath) {
+  ParameterBlock block = von_mises_block();
+  block.values.erase("fluidity");
+  const InputError error = error_of(block);
+  EXPECT_EQ(error.key(), "materials.soil.fluidity");
+  EXPECT_EQ(error.problem(), "missing required key");
+  EXPECT_EQ(error.location().line, 10);  // the block, since the key is absent
+
+  ParameterBlock clay = cam_clay_block();
+  clay.values.erase("preconsolidation_pressure");
+  EXPECT_EQ(error_of(clay).key(), "materials.clay.preconsolidation_pressure");
+}
+
+TEST(PerzynaFactory, OutOfRangeValuesNameTheirKeyAndLine) {
+  ParameterBlock block = von_mises_block();
+  block.values["exponent"] = {0.0, at_line(17)};  // N > 0
+  InputError error = error_of(block);
+  EXPECT_EQ(error.key(), "materials.soil.exponent");
+  EXPECT_EQ(error.location().line, 17);
+
+  block = von_mises_block();
+  block.values["minimum_yield_stress"] = {60e3, at_line(18)};  // above Y0
+  EXPECT_EQ(error_of(block).key(), "materials.soil.minimum_yield_stress");
+
+  ParameterBlock clay = cam_clay_block();
+  clay.values["compression_index"] = {0.03, at_line(26)};  // below kappa_c = 0.04
+  error = error_of(clay);
+  EXPECT_EQ(error.key(), "materials.clay.compression_index");
+  EXPECT_EQ(error.location().line, 26);
+
+  clay = cam_clay_block();
+  clay.values["friction_angle"] = {90.0, at_line(25)};  // open interval (0, 90)
+  EXPECT_EQ(error_of(clay).key(), "materials.clay.friction_angle");
+}
+
+TEST(PerzynaFactory, UnknownKeyIsRejected) {
+  ParameterBlock block = cam_clay_block();
+  block.values["hardening_modulus"] = {1e6, at_line(32)};  // a Von Mises key
+  const InputError error = error_of(block);
+  EXPECT_EQ(error.key(), "materials.clay.hardening_modulus");
+  EXPECT_EQ(error.location().line, 32);
+}
+
+}  // namespace
+}  // namespace rktsph
