@@ -225,11 +225,16 @@ void DrySolid::advance_stress(const Material& material, const double* rate_sigma
   SymmetricTensor stress{};
   for (int c = 0; c < ns; ++c)
     stress[stress_slot_[c]] = sigma[c];
-  const double stiffness = material.source_stiffness(
-      stress, std::span<const double>(kappa, static_cast<std::size_t>(nk)));
-  const int substeps =
-      std::clamp(static_cast<int>(std::ceil(interval * stiffness / integration_.substep_factor)), 1,
-                 integration_.max_substeps);
+  // The source may switch on within the step (an elastic state pushed beyond the yield surface by
+  // the flux): size the sub-steps by the larger stiffness of the start and of the elastic predictor.
+  SymmetricTensor predictor{};
+  for (int c = 0; c < ns; ++c) predictor[stress_slot_[c]] = sigma[c] + interval * rate_sigma[c];
+  const std::span<const double> kappa_view(kappa, static_cast<std::size_t>(nk));
+  const double stiffness = std::max(material.source_stiffness(stress, kappa_view),
+                                    material.source_stiffness(predictor, kappa_view));
+  const int substeps = std::clamp(
+      static_cast<int>(std::ceil(interval * stiffness / integration_.substep_factor)), 1,
+      integration_.max_substeps);
   const double delta = interval / substeps;
   const int n = ns + nk;
   double y[kMaxStress + kMaxInternal], stage[kMaxStress + kMaxInternal];

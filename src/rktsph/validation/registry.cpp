@@ -1,9 +1,26 @@
-#include "rktsph/validation/validation_case.hpp"
+#include "rktsph/validation/validation_cases.hpp"
 
 namespace rktsph {
 
 const std::vector<ValidationCase>& validation_cases() {
-  static const std::vector<ValidationCase> cases = {};
+  static const std::vector<ValidationCase> cases = {
+      {"bar1d-elastic", "1D elastic bar at Courant 0.6 and 1 against characteristics (4.2)",
+       &validate_bar1d_elastic},
+      {"bar1d-viscoplastic", "shock in a 1D Perzyna bar against characteristics (4.3)",
+       &validate_bar1d_viscoplastic},
+      {"sample2d-localization", "shear band in a softening plane-strain sample (4.4)",
+       &validate_sample2d_localization},
+      {"slope-elastic", "elastic vertical slope under ramped gravity with damping (4.5.1)",
+       &validate_slope_elastic},
+      {"slope-viscoplastic", "critical stability number of a vertical cut (4.5.2)",
+       &validate_slope_viscoplastic},
+      {"slope-softening", "progressive failure of a softening vertical cut (4.5.3)",
+       &validate_slope_softening},
+      {"bar-wave-2d", "BAR-WAVE-2D plane wave, with and without artificial viscosity",
+       &validate_bar_wave_2d},
+      {"convergence", "spatial convergence order of the elastic bar and a smooth 2D wave",
+       &validate_convergence},
+  };
   return cases;
 }
 

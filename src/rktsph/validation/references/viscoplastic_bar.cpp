@@ -1,0 +1,203 @@
+#include "rktsph/validation/references/viscoplastic_bar.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace rktsph::references {
+namespace {
+
+void require(bool condition, const char* message) {
+  if (!condition) throw std::invalid_argument(message);
+}
+
+}  // namespace
+
+ViscoplasticBar::ViscoplasticBar(ViscoplasticBarParameters parameters)
+    : parameters_(std::move(parameters)) {
+  const ViscoplasticBarParameters& p = parameters_;
+  require(p.length > 0.0 && p.young_modulus > 0.0 && p.density > 0.0,
+          "ViscoplasticBar: length, Young's modulus and density must be > 0");
+  require(p.initial_yield_stress > 0.0 && p.fluidity > 0.0 && p.exponent > 0.0,
+          "ViscoplasticBar: initial yield stress, fluidity and exponent must be > 0");
+  require(p.residual_yield_fraction > 0.0 && p.residual_yield_fraction <= 1.0,
+          "ViscoplasticBar: residual_yield_fraction must be in (0, 1]");
+  require(p.cells >= 2, "ViscoplasticBar: at least 2 cells");
+  require(static_cast<bool>(p.right_velocity), "ViscoplasticBar: right_velocity is missing");
+
+  wave_speed_ = std::sqrt(p.young_modulus / p.density);
+  impedance_ = p.density * wave_speed_;
+  grid_spacing_ = p.length / p.cells;
+  time_step_ = grid_spacing_ / wave_speed_;
+  source_weight_ = 0.5 * p.young_modulus * time_step_;
+  residual_yield_ = p.residual_yield_fraction * p.initial_yield_stress;
+
+  const std::size_t nodes = static_cast<std::size_t>(p.cells) + 1;
+  stress_.assign(nodes, 0.0);
+  velocity_.assign(nodes, 0.0);
+  plastic_strain_.assign(nodes, 0.0);
+  plastic_rate_.assign(nodes, 0.0);
+  yield_.assign(nodes, p.initial_yield_stress);
+  next_stress_.assign(nodes, 0.0);
+  next_velocity_.assign(nodes, 0.0);
+  next_rate_.assign(nodes, 0.0);
+}
+
+double ViscoplasticBar::plastic_rate(int node, double trial_stress) const {
+  // Unknown: the magnitude m of the new rate (its sign is that of the trial stress, because flow
+  // only reduces |σ| = |σ_trial| − k m). Residual r(m) = m − γ φ(m), with φ the Perzyna
+  // overstress function evaluated at the new stress and at the new (trapezoidal) yield stress.
+  // r(0) ≤ 0 and r(|σ_trial|/k) > 0, so a root is bracketed; Newton steps that leave the bracket
+  // are replaced by bisection.
+  const ViscoplasticBarParameters& p = parameters_;
+  const double k = source_weight_;
+  const double magnitude = std::abs(trial_stress);
+  const double old_rate = std::abs(plastic_rate_[node]);
+  const double yield_slope = p.hardening_modulus * 0.5 * time_step_;
+  const double old_yield = yield_[node];
+
+  struct Evaluation {
+    double residual;
+    double derivative;
+  };
+  auto evaluate = [&](double m) {
+    const double unclamped = old_yield + yield_slope * (old_rate + m);
+    const double yield = std::max(residual_yield_, unclamped);
+    const double yield_derivative = unclamped > residual_yield_ ? yield_slope : 0.0;
+    const double stress = magnitude - k * m;
+    const double overstress = stress / yield - 1.0;
+    if (overstress <= 0.0) return Evaluation{m, 1.0};
+    const double overstress_derivative = (-k * yield - stress * yield_derivative) / (yield * yield);
+    const double flow = p.fluidity * std::pow(overstress, p.exponent);
+    const double flow_derivative =
+        p.fluidity * p.exponent * std::pow(overstress, p.exponent - 1.0) * overstress_derivative;
+    return Evaluation{m - flow, 1.0 - flow_derivative};
+  };
+
+  const Evaluation at_zero = evaluate(0.0);
+  if (at_zero.residual >= 0.0) return 0.0;
+
+  double low = 0.0;
+  double high = magnitude / k;
+  // For H = 0 and N = 1 the residual is linear and this first guess is already the root.
+  double m = std::min(high, -at_zero.residual / at_zero.derivative);
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    const Evaluation e = evaluate(m);
+    if (e.residual == 0.0) break;
+    (e.residual > 0.0 ? high : low) = m;
+    double next = e.derivative > 0.0 ? m - e.residual / e.derivative : 0.5 * (low + high);
+    if (!(next > low && next < high)) next = 0.5 * (low + high);
+    const bool converged =
+        std::abs(next - m) <= 1e-15 * std::max(m, 1e-300) || high - low <= 1e-15 * high;
+    m = next;
+    if (converged) break;
+  }
+  return std::copysign(m, trial_stress);
+}
+
+void ViscoplasticBar::step() {
+  const ViscoplasticBarParameters& p = parameters_;
+  const int last = node_count() - 1;
+  const double k = source_weight_;
+  const double z = impedance_;
+  const double new_time = static_cast<double>(steps_ + 1) * time_step_;
+
+  // Left end: only the left-going invariant R⁻ = σ + Zv arrives, from node 1.
+  {
+    const double arriving = stress_[1] + z * velocity_[1] - k * plastic_rate_[1];
+    if (p.left_end == ViscoplasticBarParameters::LeftEnd::Fixed) {
+      const double rate = plastic_rate(0, arriving);
+      next_rate_[0] = rate;
+      next_stress_[0] = arriving - k * rate;
+      next_velocity_[0] = 0.0;
+    } else {
+      // σ = 0 means no flow at a free end, so the source has no new-time part.
+      next_rate_[0] = 0.0;
+      next_stress_[0] = 0.0;
+      next_velocity_[0] = arriving / z;
+    }
+  }
+  // Interior: R⁺ from node i−1 and R⁻ from node i+1, each with half of its source known.
+  for (int i = 1; i < last; ++i) {
+    const double right_going = stress_[i - 1] - z * velocity_[i - 1] - k * plastic_rate_[i - 1];
+    const double left_going = stress_[i + 1] + z * velocity_[i + 1] - k * plastic_rate_[i + 1];
+    const double trial = 0.5 * (right_going + left_going);
+    const double rate = plastic_rate(i, trial);
+    next_rate_[i] = rate;
+    next_stress_[i] = trial - k * rate;
+    // The new-time source −k·rate enters both invariants equally and cancels in v.
+    next_velocity_[i] = (left_going - right_going) / (2.0 * z);
+  }
+  // Right end: velocity imposed, only R⁺ arrives, from node last−1.
+  {
+    const double imposed = p.right_velocity(new_time);
+    const double trial =
+        stress_[last - 1] - z * velocity_[last - 1] - k * plastic_rate_[last - 1] + z * imposed;
+    const double rate = plastic_rate(last, trial);
+    next_rate_[last] = rate;
+    next_stress_[last] = trial - k * rate;
+    next_velocity_[last] = imposed;
+  }
+
+  const double half_step = 0.5 * time_step_;
+  for (int i = 0; i <= last; ++i) {
+    const double rate_sum = plastic_rate_[i] + next_rate_[i];
+    const double rate_magnitude_sum = std::abs(plastic_rate_[i]) + std::abs(next_rate_[i]);
+    plastic_strain_[i] += half_step * rate_sum;
+    yield_[i] =
+        std::max(residual_yield_, yield_[i] + p.hardening_modulus * half_step * rate_magnitude_sum);
+  }
+  std::swap(stress_, next_stress_);
+  std::swap(velocity_, next_velocity_);
+  std::swap(plastic_rate_, next_rate_);
+  ++steps_;
+}
+
+void ViscoplasticBar::advance_to(double end_time) {
+  while (time() + 0.5 * time_step_ < end_time)
+    step();
+}
+
+ViscoplasticBarPoint ViscoplasticBar::at(double x) const {
+  const double position = std::clamp(x / grid_spacing_, 0.0, static_cast<double>(node_count() - 1));
+  const int left = std::min(static_cast<int>(position), node_count() - 2);
+  const double weight = position - left;
+  auto interpolate = [&](const std::vector<double>& field) {
+    return (1.0 - weight) * field[left] + weight * field[left + 1];
+  };
+  return ViscoplasticBarPoint{interpolate(stress_), interpolate(velocity_),
+                              interpolate(plastic_strain_)};
+}
+
+std::vector<ViscoplasticBarSample> viscoplastic_bar_history(
+    const ViscoplasticBarParameters& parameters, double x, double end_time) {
+  ViscoplasticBar bar(parameters);
+  std::vector<ViscoplasticBarSample> history;
+  history.reserve(static_cast<std::size_t>(std::max(0.0, end_time / bar.time_step())) + 2);
+  history.push_back({bar.time(), bar.at(x)});
+  while (bar.time() + 0.5 * bar.time_step() < end_time) {
+    bar.step();
+    history.push_back({bar.time(), bar.at(x)});
+  }
+  return history;
+}
+
+double viscoplastic_front_stress(double initial_front_stress, double initial_yield_stress,
+                                 double young_modulus, double fluidity, double time) {
+  // Behind a front into material at rest σ = ∓Zv, so both characteristic relations reduce to
+  // dσ_f/dt = −(E/2) ε̇_vp(σ_f); with N = 1 this is linear in the overstress.
+  const double magnitude = std::abs(initial_front_stress);
+  if (magnitude <= initial_yield_stress) return initial_front_stress;
+  const double decay = std::exp(-young_modulus * fluidity * time / (2.0 * initial_yield_stress));
+  return std::copysign(initial_yield_stress + (magnitude - initial_yield_stress) * decay,
+                       initial_front_stress);
+}
+
+double viscoplastic_decay_length(double young_modulus, double density, double initial_yield_stress,
+                                 double fluidity) {
+  const double wave_speed = std::sqrt(young_modulus / density);
+  return 2.0 * wave_speed * initial_yield_stress / (young_modulus * fluidity);
+}
+
+}  // namespace rktsph::references

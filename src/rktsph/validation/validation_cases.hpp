@@ -1,0 +1,20 @@
+// The bundled validation cases, one function each (validation/cases/<name>.cpp), listed in
+// registry.cpp. Each runs its case file(s) under cases/<name>/ and returns its checks.
+#pragma once
+
+#include <vector>
+
+#include "rktsph/validation/validation_case.hpp"
+
+namespace rktsph {
+
+std::vector<CheckResult> validate_bar1d_elastic(const ValidationContext& context);
+std::vector<CheckResult> validate_bar1d_viscoplastic(const ValidationContext& context);
+std::vector<CheckResult> validate_sample2d_localization(const ValidationContext& context);
+std::vector<CheckResult> validate_slope_elastic(const ValidationContext& context);
+std::vector<CheckResult> validate_slope_viscoplastic(const ValidationContext& context);
+std::vector<CheckResult> validate_slope_softening(const ValidationContext& context);
+std::vector<CheckResult> validate_bar_wave_2d(const ValidationContext& context);
+std::vector<CheckResult> validate_convergence(const ValidationContext& context);
+
+}  // namespace rktsph

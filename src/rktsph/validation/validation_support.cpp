@@ -1,0 +1,116 @@
+#include "rktsph/validation/validation_support.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "rktsph/driver/run_case.hpp"
+
+namespace rktsph {
+
+ProbeTable ProbeTable::read(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw RunError("cannot read " + path.string());
+  ProbeTable table;
+  std::string line;
+  std::getline(in, line);
+  std::stringstream header(line);
+  for (std::string name; std::getline(header, name, ',');) table.names_.push_back(name);
+  table.columns_.resize(table.names_.size());
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::size_t c = 0;
+    for (std::string cell; std::getline(row, cell, ',') && c < table.columns_.size(); ++c)
+      table.columns_[c].push_back(std::strtod(cell.c_str(), nullptr));
+  }
+  return table;
+}
+
+const std::vector<double>& ProbeTable::column(const std::string& name) const {
+  const auto it = std::find(names_.begin(), names_.end(), name);
+  if (it == names_.end()) throw RunError("probes.csv has no column '" + name + "'");
+  return columns_[static_cast<std::size_t>(it - names_.begin())];
+}
+
+double ProbeTable::mean(const std::string& name, double t0, double t1) const {
+  const auto& t = time();
+  const auto& v = column(name);
+  double sum = 0.0;
+  int count = 0;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= t0 && t[i] <= t1) {
+      sum += v[i];
+      ++count;
+    }
+  return count ? sum / count : std::numeric_limits<double>::quiet_NaN();
+}
+
+double ProbeTable::max(const std::string& name, double t0, double t1) const {
+  const auto& t = time();
+  const auto& v = column(name);
+  double result = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= t0 && t[i] <= t1) result = std::max(result, v[i]);
+  return result;
+}
+
+double ProbeTable::max_abs(const std::string& name, double t0, double t1) const {
+  const auto& t = time();
+  const auto& v = column(name);
+  double result = 0.0;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= t0 && t[i] <= t1) result = std::max(result, std::abs(v[i]));
+  return result;
+}
+
+double ProbeTable::first_crossing(const std::string& name, double level) const {
+  const auto& t = time();
+  const auto& v = column(name);
+  for (std::size_t i = 1; i < t.size(); ++i)
+    if ((v[i - 1] - level) * (v[i] - level) <= 0.0 && v[i] != v[i - 1])
+      return t[i - 1] + (level - v[i - 1]) / (v[i] - v[i - 1]) * (t[i] - t[i - 1]);
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double ProbeTable::step_arrival(const std::string& name, double plateau, double t0,
+                                double t1) const {
+  const auto& t = time();
+  const auto& v = column(name);
+  double area = 0.0;  // trapezoidal integral of value/plateau over [t0, t1]
+  for (std::size_t i = 1; i < t.size(); ++i) {
+    const double a = std::max(t[i - 1], t0), b = std::min(t[i], t1);
+    if (b <= a) continue;
+    auto at = [&](double s) {
+      return v[i - 1] + (v[i] - v[i - 1]) * (s - t[i - 1]) / (t[i] - t[i - 1]);
+    };
+    area += 0.5 * (at(a) + at(b)) * (b - a) / plateau;
+  }
+  return t1 - area;
+}
+
+CaseDescription load_bundled_case(const ValidationContext& context, const std::string& folder,
+                                  const std::vector<CaseOverride>& overrides) {
+  return read_case_file((context.cases_directory / folder / "case.yaml").string(), overrides);
+}
+
+std::filesystem::path run_for_validation(const ValidationContext& context,
+                                         const CaseDescription& description,
+                                         const std::string& label,
+                                         const std::function<void(const Simulation&)>& inspect) {
+  const std::filesystem::path directory = context.output_directory / description.name / label;
+  RunOptions options;
+  options.quiet = true;
+  const RunOutcome outcome = run_case(description, directory, options, inspect);
+  if (outcome.status != RunStatus::Completed)
+    throw RunError(fmt::format("run '{}' of {} did not complete: {}", label, description.name,
+                               outcome.message));
+  return directory;
+}
+
+double relative_error(double value, double reference) { return std::abs(value / reference - 1.0); }
+
+}  // namespace rktsph

@@ -1,0 +1,51 @@
+// Helpers shared by the validation cases: load a bundled case (with the quick variant's
+// overrides), run it into the validation output folder, and read its probe histories back.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "rktsph/case/case_reader.hpp"
+#include "rktsph/simulation/simulation.hpp"
+#include "rktsph/validation/validation_case.hpp"
+
+namespace rktsph {
+
+/// probes.csv as columns.
+class ProbeTable {
+ public:
+  static ProbeTable read(const std::filesystem::path& path);
+  const std::vector<double>& column(const std::string& name) const;
+  const std::vector<double>& time() const { return column("time"); }
+
+  /// Mean, maximum and maximum magnitude of a column over times in [t0, t1].
+  double mean(const std::string& name, double t0, double t1) const;
+  double max(const std::string& name, double t0, double t1) const;
+  double max_abs(const std::string& name, double t0, double t1) const;
+  /// First time the column crosses `level` (linear interpolation between samples), or NaN.
+  double first_crossing(const std::string& name, double level) const;
+  /// Arrival time of a step from 0 to `plateau` within [t0, t1], from the area under the
+  /// normalised history: t_arrival = t1 - integral(value / plateau). Exact for a sharp step,
+  /// insensitive to sampling and to ringing that averages out.
+  double step_arrival(const std::string& name, double plateau, double t0, double t1) const;
+
+ private:
+  std::vector<std::string> names_;
+  std::vector<std::vector<double>> columns_;
+};
+
+/// cases/<folder>/case.yaml with `overrides` applied.
+CaseDescription load_bundled_case(const ValidationContext& context, const std::string& folder,
+                                  const std::vector<CaseOverride>& overrides = {});
+
+/// Runs `description` into <output>/<case>/<label>; throws RunError if it does not complete.
+std::filesystem::path run_for_validation(
+    const ValidationContext& context, const CaseDescription& description, const std::string& label,
+    const std::function<void(const Simulation&)>& inspect = {});
+
+/// |a/b - 1|
+double relative_error(double value, double reference);
+
+}  // namespace rktsph
