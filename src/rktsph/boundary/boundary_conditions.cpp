@@ -53,6 +53,8 @@ BoundaryConditions::BoundaryConditions(
   const double tolerance = 1e-6 * nodes.spacing;
   velocity_axes_.assign(n, 0);
   projected_axes_.assign(n, 0);
+  pore_pressure_field_ = model.pore_pressure_field();
+  biot_coefficient_ = model.biot_coefficient();
   face_normals_.assign(n, {});
 
   // Mirror planes first: they decide which lattice faces are real faces.
@@ -139,8 +141,10 @@ BoundaryConditions::BoundaryConditions(
     if (is_driven(node, normal) && ((velocity_axes_[node] >> component) & 1u))
       return;  // a reaction on the driven face, not a traction
     const int field = model.stress_field(normal.axis, component);
+    // Saturated model: the traction acts on the total stress, sigma'_nn = t_n + alpha p_w.
     if (field >= 0)
-      stress_constraints_.push_back({node, field, function, static_cast<double>(normal.sign)});
+      stress_constraints_.push_back({node, field, function, static_cast<double>(normal.sign),
+                                     pore_pressure_field_ >= 0 && component == normal.axis});
   };
   for (std::size_t i = 0; i < n; ++i) {
     const auto node = static_cast<std::int32_t>(i);
@@ -174,6 +178,20 @@ BoundaryConditions::BoundaryConditions(
       const int function = add_function(*condition.traction[c]);
       for (std::int32_t node : members)
         add_face_stress(node, common.front(), c, function);
+    }
+  }
+
+  // Drained faces: prescribed pore pressure (a Dirichlet row of the pressure solve too).
+  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+    if (condition.kind != BoundaryConditionSpec::Kind::PorePressure) continue;
+    const auto& members = group_nodes(groups, condition);
+    const int function = add_function(*condition.pore_pressure);
+    for (std::int32_t node : members) {
+      if (std::find(drained_nodes_.begin(), drained_nodes_.end(), node) != drained_nodes_.end())
+        continue;
+      drained_nodes_.push_back(node);
+      drained_function_.push_back(function);
+      pressure_constraints_.push_back({node, pore_pressure_field_, function, 1.0});
     }
   }
 
@@ -212,10 +230,14 @@ void BoundaryConditions::apply(double time, FieldArray& values,
   auto row_of = [&](std::int32_t node) {
     return node_to_row.empty() ? node : node_to_row[static_cast<std::size_t>(node)];
   };
-  for (const auto* list : {&stress_constraints_, &velocity_constraints_})
+  for (const auto* list : {&pressure_constraints_, &stress_constraints_, &velocity_constraints_})
     for (const Constraint& c : *list) {
       const std::int32_t row = row_of(c.node);
-      if (row >= 0) values(c.field, static_cast<std::size_t>(row)) = c.scale * value[c.function];
+      if (row < 0) continue;
+      const auto r = static_cast<std::size_t>(row);
+      double v = c.scale * value[c.function];
+      if (c.plus_pore_pressure) v += biot_coefficient_ * values(pore_pressure_field_, r);
+      values(c.field, r) = v;
     }
 }
 

@@ -48,6 +48,12 @@ class BoundaryConditions {
   /// given (constraints of nodes with row -1 are skipped).
   void apply(double time, FieldArray& values, std::span<const std::int32_t> node_to_row = {}) const;
 
+  /// Drained nodes (prescribed pore pressure) and their value at time t.
+  const std::vector<std::int32_t>& drained_nodes() const { return drained_nodes_; }
+  double drained_pressure(std::size_t k, double time) const {
+    return functions_[static_cast<std::size_t>(drained_function_[k])](time);
+  }
+
   /// True if velocity component `axis` of `node` is imposed.
   bool velocity_imposed(std::int32_t node, int axis) const {
     return (velocity_axes_[node] >> axis) & 1u;
@@ -57,8 +63,9 @@ class BoundaryConditions {
   struct Constraint {
     std::int32_t node;
     int field;
-    int function;  // index into functions_
-    double scale;  // value = scale * functions_[function](t)
+    int function;                     // index into functions_
+    double scale;                     // value = scale * functions_[function](t)
+    bool plus_pore_pressure = false;  // + alpha p_w: a traction on the total stress (§5.1)
   };
   int add_function(const TimeFunction& f);
 
@@ -67,7 +74,12 @@ class BoundaryConditions {
   std::vector<std::uint8_t> velocity_axes_;
   std::vector<std::uint8_t> projected_axes_;
   std::vector<TimeFunction> functions_;
-  std::vector<Constraint> stress_constraints_;    // applied first
+  std::vector<Constraint> pressure_constraints_;  // drained nodes, applied first
+  std::vector<Constraint> stress_constraints_;
+  std::vector<std::int32_t> drained_nodes_;
+  std::vector<int> drained_function_;
+  int pore_pressure_field_ = -1;
+  double biot_coefficient_ = 0.0;
   std::vector<Constraint> velocity_constraints_;  // applied last: velocity wins
 };
 

@@ -68,15 +68,17 @@ struct GroupSpec {
 
 struct BoundaryConditionSpec {
   enum class Kind {
-    Velocity,  ///< imposed velocity components (those given), others free
-    Fixed,     ///< v = 0 (rough rigid wall)
-    Roller,    ///< v_n = 0, sigma_nt = 0 (smooth wall, = symmetry plane), mirror images
-    Traction,  ///< imposed traction components on the face (those given), others zero
+    Velocity,      ///< imposed velocity components (those given), others free
+    Fixed,         ///< v = 0 (rough rigid wall)
+    Roller,        ///< v_n = 0, sigma_nt = 0 (smooth wall, = symmetry plane), mirror images
+    Traction,      ///< imposed traction components on the face (those given), others zero
+    PorePressure,  ///< drained face: prescribed excess pore pressure (saturated model only)
   };
   Kind kind = Kind::Velocity;
   std::string group;
   std::array<std::optional<TimeFunction>, 3> velocity;  ///< Velocity: per component [m/s]
   std::array<std::optional<TimeFunction>, 3> traction;  ///< Traction: per component [Pa]
+  std::optional<TimeFunction> pore_pressure;            ///< PorePressure [Pa]
   int axis = 0;        ///< Roller: axis of the normal (0 = x, 1 = y)
   bool mirror = true;  ///< Roller: fold mirror images into the operators (prototype R3)
   SourceLocation where;
@@ -99,6 +101,22 @@ struct InitialConditionsSpec {
   Vec3 velocity{};                          ///< uniform initial velocity [m/s]
   std::optional<double> geostatic_surface;  ///< y of the free surface [m] for geostatic stress
   std::optional<double> k0;                 ///< sigma_h / sigma_v; default nu/(1-nu)
+  SourceLocation where;
+};
+
+/// Pore water and the pressure solve of the saturated v-pw model (docs/theory.md §6).
+struct PoreFluidSpec {
+  double bulk_modulus = 2.2e9;          ///< K_w [Pa]
+  double density = 1000.0;              ///< rho_w [kg/m^3]
+  double porosity = 0.3;                ///< n [-]
+  double hydraulic_conductivity = 0.0;  ///< Darcy k [m/s]; k_bar = k / (rho_w g)
+  double gravity = 9.81;                ///< g [m/s^2] of the conversion k -> k_bar
+  double biot_coefficient = 1.0;        ///< alpha
+  double projection_beta = 1.0;         ///< incremental projection (1) or not (0)
+  bool incomplete_cholesky = false;     ///< preconditioner: IC instead of Jacobi
+  double solver_tolerance = 1e-10;      ///< relative residual of the conjugate gradient
+  long solver_max_iterations = 0;       ///< 0: twice the number of nodes
+  double laplacian_scale = 0.0;         ///< 0: computed so that L(|x|^2) = 2d in the interior
   SourceLocation where;
 };
 
@@ -153,6 +171,7 @@ struct CaseDescription {
   std::vector<BoundaryConditionSpec> boundary_conditions;
   std::optional<GravitySpec> gravity;
   std::optional<DampingSpec> damping;
+  std::optional<PoreFluidSpec> pore_fluid;  ///< required for the saturated model
   InitialConditionsSpec initial;
   NumericsSpec numerics;
   TimeSpec time;

@@ -33,7 +33,8 @@ const NumberRange kUnitInterval{0.0, 1.0, false, false};
 
 const std::vector<std::string> kShapeKinds = {"segment", "rectangle", "polygon"};
 const std::vector<std::string> kGroupSelectors = {"edge", "box", "polygon", "point"};
-const std::vector<std::string> kBoundaryKinds = {"velocity", "fixed", "roller", "traction"};
+const std::vector<std::string> kBoundaryKinds = {"velocity", "fixed", "roller", "traction",
+                                                 "pore_pressure"};
 const std::vector<std::string> kOutputFields = {"velocity",      "displacement",      "stress",
                                                 "pressure",      "deviatoric_stress", "eps_vp",
                                                 "pore_pressure", "total_stress",      "material"};
@@ -88,6 +89,7 @@ class CaseReader {
   DampingSpec read_damping(const YamlNode& node) const;
   void read_initial_conditions(const YamlNode& node);
   void read_numerics(const YamlNode& node);
+  void read_pore_fluid(const YamlNode& node);
   void read_time(const YamlNode& node);
   void read_output(const YamlNode& node);
   ProbeSpec read_probe(const YamlNode& node) const;
@@ -115,7 +117,7 @@ CaseDescription CaseReader::read() {
   const YamlMap top(root_);
   top.allow_only({"name", "description", "model", "dimension", "plane", "geometry", "materials",
                   "groups", "boundary_conditions", "loads", "initial_conditions", "numerics",
-                  "time", "output", "probes"});
+                  "pore_fluid", "time", "output", "probes"});
   out_.file = file_;
   const SourceLocation absent{file_, 0, 0};
   out_.initial.where = out_.numerics.where = out_.output.where = absent;
@@ -132,6 +134,19 @@ CaseDescription CaseReader::read() {
   if (const YamlNode* loads = top.find("loads")) read_loads(*loads);
   if (const YamlNode* initial = top.find("initial_conditions")) read_initial_conditions(*initial);
   if (const YamlNode* numerics = top.find("numerics")) read_numerics(*numerics);
+  const YamlNode* pore_fluid = top.find("pore_fluid");
+  if (out_.model == ModelKind::SaturatedVpw) {
+    read_pore_fluid(top.require("pore_fluid"));
+  } else if (pore_fluid != nullptr) {
+    fail_at(*pore_fluid, "'pore_fluid' only applies to the saturated model",
+            "model: saturated_vpw, or remove 'pore_fluid'", true);
+  }
+  for (const BoundaryConditionSpec& condition : out_.boundary_conditions)
+    if (condition.kind == BoundaryConditionSpec::Kind::PorePressure &&
+        out_.model != ModelKind::SaturatedVpw)
+      throw InputError(condition.where, "boundary_conditions.pore_pressure", "",
+                       "a pore-pressure condition needs the saturated model",
+                       "model: saturated_vpw");
   read_time(top.require("time"));
   if (const YamlNode* output = top.find("output")) read_output(*output);
   if (const YamlNode* probes = top.find("probes")) {
@@ -303,7 +318,7 @@ GroupSpec CaseReader::read_group(const YamlNode& node) const {
 
 BoundaryConditionSpec CaseReader::read_boundary_condition(const YamlNode& node) const {
   const YamlMap item(node);
-  item.allow_only({"group", "velocity", "fixed", "roller", "mirror", "traction"});
+  item.allow_only({"group", "velocity", "fixed", "roller", "mirror", "traction", "pore_pressure"});
   BoundaryConditionSpec condition;
   condition.where = item.where();
   condition.group = read_group_reference(item.require("group"));
@@ -318,6 +333,9 @@ BoundaryConditionSpec CaseReader::read_boundary_condition(const YamlNode& node) 
   } else if (kind.key == "traction") {
     condition.kind = BoundaryConditionSpec::Kind::Traction;
     condition.traction = read_components(kind);
+  } else if (kind.key == "pore_pressure") {
+    condition.kind = BoundaryConditionSpec::Kind::PorePressure;
+    condition.pore_pressure = read_time_function(kind);
   } else if (kind.key == "fixed") {
     if (!to_bool(kind)) fail_at(kind, "'fixed' can only be true", "true (or leave it out)");
     condition.kind = BoundaryConditionSpec::Kind::Fixed;
@@ -435,6 +453,50 @@ void CaseReader::read_numerics(const YamlNode& node) {
   if (const YamlNode* viscosity = map.find("artificial_viscosity")) {
     numerics.artificial_viscosity = to_number(*viscosity, NumberRange::non_negative());
   }
+}
+
+void CaseReader::read_pore_fluid(const YamlNode& node) {
+  const YamlMap map(node);
+  map.allow_only({"bulk_modulus", "density", "porosity", "hydraulic_conductivity", "gravity",
+                  "biot_coefficient", "projection_beta", "preconditioner", "solver_tolerance",
+                  "solver_max_iterations", "laplacian_scale"});
+  PoreFluidSpec fluid;
+  fluid.where = map.where();
+  fluid.bulk_modulus = to_number(map.require("bulk_modulus"), NumberRange::positive());
+  fluid.density = to_number(map.require("density"), NumberRange::positive());
+  NumberRange fraction = NumberRange::positive();
+  fraction.high = 1.0;
+  fraction.high_open = true;
+  fluid.porosity = to_number(map.require("porosity"), fraction);
+  fluid.hydraulic_conductivity =
+      to_number(map.require("hydraulic_conductivity"), NumberRange::non_negative());
+  if (const YamlNode* g = map.find("gravity"))
+    fluid.gravity = to_number(*g, NumberRange::positive());
+  if (const YamlNode* alpha = map.find("biot_coefficient")) {
+    NumberRange biot = NumberRange::positive();
+    biot.high = 1.0;
+    fluid.biot_coefficient = to_number(*alpha, biot);
+  }
+  if (const YamlNode* beta = map.find("projection_beta")) {
+    // beta = 0 adds a spurious permeability of about dt/rho (prototype-vpw §2.2): not offered.
+    fluid.projection_beta = static_cast<double>(to_integer(*beta, 1, 1));
+  }
+  if (const YamlNode* preconditioner = map.find("preconditioner")) {
+    fluid.incomplete_cholesky =
+        to_choice(*preconditioner, {"jacobi", "incomplete_cholesky"}) == "incomplete_cholesky";
+  }
+  if (const YamlNode* tolerance = map.find("solver_tolerance")) {
+    NumberRange range = NumberRange::positive();
+    range.high = 1e-3;
+    fluid.solver_tolerance = to_number(*tolerance, range);
+  }
+  if (const YamlNode* iterations = map.find("solver_max_iterations")) {
+    fluid.solver_max_iterations = to_integer(*iterations, 1, 100000000);
+  }
+  if (const YamlNode* scale = map.find("laplacian_scale")) {
+    fluid.laplacian_scale = to_number(*scale, NumberRange::positive());
+  }
+  out_.pore_fluid = fluid;
 }
 
 void CaseReader::read_time(const YamlNode& node) {
@@ -812,6 +874,10 @@ void emit_boundary_conditions(YAML::Emitter& out, const CaseDescription& descrip
       case BoundaryConditionSpec::Kind::Fixed:
         out << YAML::Key << "fixed" << YAML::Value << "true";
         break;
+      case BoundaryConditionSpec::Kind::PorePressure:
+        out << YAML::Key << "pore_pressure" << YAML::Value;
+        emit_time_function(out, *condition.pore_pressure);
+        break;
       case BoundaryConditionSpec::Kind::Roller:
         out << YAML::Key << "roller" << YAML::Value << (condition.axis == 0 ? "x" : "y");
         out << YAML::Key << "mirror" << YAML::Value << (condition.mirror ? "true" : "false");
@@ -977,6 +1043,26 @@ std::string write_case_yaml(const CaseDescription& description) {
   emit_boundary_conditions(out, description);
   emit_loads_and_initial(out, description);
   emit_numerics(out, description.numerics);
+  if (const auto& fluid = description.pore_fluid) {
+    out << YAML::Key << "pore_fluid" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "bulk_modulus" << YAML::Value << number(fluid->bulk_modulus);
+    out << YAML::Key << "density" << YAML::Value << number(fluid->density);
+    out << YAML::Key << "porosity" << YAML::Value << number(fluid->porosity);
+    out << YAML::Key << "hydraulic_conductivity" << YAML::Value
+        << number(fluid->hydraulic_conductivity);
+    out << YAML::Key << "gravity" << YAML::Value << number(fluid->gravity);
+    out << YAML::Key << "biot_coefficient" << YAML::Value << number(fluid->biot_coefficient);
+    out << YAML::Key << "projection_beta" << YAML::Value
+        << static_cast<int>(fluid->projection_beta);
+    out << YAML::Key << "preconditioner" << YAML::Value
+        << (fluid->incomplete_cholesky ? "incomplete_cholesky" : "jacobi");
+    out << YAML::Key << "solver_tolerance" << YAML::Value << number(fluid->solver_tolerance);
+    if (fluid->solver_max_iterations > 0)
+      out << YAML::Key << "solver_max_iterations" << YAML::Value << fluid->solver_max_iterations;
+    if (fluid->laplacian_scale > 0)
+      out << YAML::Key << "laplacian_scale" << YAML::Value << number(fluid->laplacian_scale);
+    out << YAML::EndMap;
+  }
   out << YAML::Key << "time" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "end" << YAML::Value << number(description.time.end);
   out << YAML::Key << "max_steps" << YAML::Value << description.time.max_steps;

@@ -167,13 +167,17 @@ void DrySolid::advance_velocity(double rate_v[3], double time, double interval, 
     const double x0 = loads_.damping_at(t0), x1 = loads_.damping_at(t0 + 0.5 * delta),
                  x2 = loads_.damping_at(t0 + delta);
     for (int a = 0; a < d; ++a) {
-      const double k1 = rate_v[a] + b0[a] - x0 * v[a];
-      const double k2 = rate_v[a] + b1[a] - x1 * (v[a] + 0.5 * delta * k1);
-      const double k3 = rate_v[a] + b1[a] - x1 * (v[a] + 0.5 * delta * k2);
-      const double k4 = rate_v[a] + b2[a] - x2 * (v[a] + delta * k3);
+      const double r = integration_.frozen_flux ? rate_v[a] : 0.0;
+      const double k1 = r + b0[a] - x0 * v[a];
+      const double k2 = r + b1[a] - x1 * (v[a] + 0.5 * delta * k1);
+      const double k3 = r + b1[a] - x1 * (v[a] + 0.5 * delta * k2);
+      const double k4 = r + b2[a] - x2 * (v[a] + delta * k3);
       v[a] += delta / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
     }
   }
+  if (!integration_.frozen_flux)
+    for (int a = 0; a < d; ++a)
+      v[a] += interval * rate_v[a];
 }
 
 void DrySolid::stress_source(const Material& material, const double* sigma, const double* kappa,
@@ -226,23 +230,27 @@ void DrySolid::advance_stress(const Material& material, const double* rate_sigma
   for (int c = 0; c < ns; ++c)
     stress[stress_slot_[c]] = sigma[c];
   // The source may switch on within the step (an elastic state pushed beyond the yield surface by
-  // the flux): size the sub-steps by the larger stiffness of the start and of the elastic predictor.
+  // the flux): size the sub-steps by the larger stiffness of the start and of the elastic
+  // predictor.
   SymmetricTensor predictor{};
-  for (int c = 0; c < ns; ++c) predictor[stress_slot_[c]] = sigma[c] + interval * rate_sigma[c];
+  for (int c = 0; c < ns; ++c)
+    predictor[stress_slot_[c]] = sigma[c] + interval * rate_sigma[c];
   const std::span<const double> kappa_view(kappa, static_cast<std::size_t>(nk));
   const double stiffness = std::max(material.source_stiffness(stress, kappa_view),
                                     material.source_stiffness(predictor, kappa_view));
-  const int substeps = std::clamp(
-      static_cast<int>(std::ceil(interval * stiffness / integration_.substep_factor)), 1,
-      integration_.max_substeps);
+  const int substeps =
+      std::clamp(static_cast<int>(std::ceil(interval * stiffness / integration_.substep_factor)), 1,
+                 integration_.max_substeps);
   const double delta = interval / substeps;
   const int n = ns + nk;
   double y[kMaxStress + kMaxInternal], stage[kMaxStress + kMaxInternal];
   double k[4][kMaxStress + kMaxInternal];
+  const bool frozen = integration_.frozen_flux;
   auto evaluate = [&](const double* state, double* slope) {
     stress_source(material, state, state + ns, slope, slope + ns);
-    for (int c = 0; c < ns; ++c)
-      slope[c] += rate_sigma[c];
+    if (frozen)
+      for (int c = 0; c < ns; ++c)
+        slope[c] += rate_sigma[c];
   };
   std::copy(sigma, sigma + ns, y);
   std::copy(kappa, kappa + nk, y + ns);
@@ -260,6 +268,9 @@ void DrySolid::advance_stress(const Material& material, const double* rate_sigma
     for (int c = 0; c < n; ++c)
       y[c] += delta / 6.0 * (k[0][c] + 2.0 * k[1][c] + 2.0 * k[2][c] + k[3][c]);
   }
+  if (!frozen)
+    for (int c = 0; c < ns; ++c)
+      y[c] += interval * rate_sigma[c];
   std::copy(y, y + ns, sigma);
   std::copy(y + ns, y + n, kappa);
 }
@@ -358,7 +369,8 @@ void DrySolid::add_artificial_viscosity(std::span<const std::int32_t> material,
     values.field(xx)[i] += viscosity * gradient.field(0)[i];
     if (d >= 2) {
       values.field(yy)[i] += viscosity * gradient.field(1 * d + 1)[i];
-      values.field(xy)[i] += viscosity * 0.5 * (gradient.field(0 * d + 1)[i] + gradient.field(1 * d + 0)[i]);
+      values.field(xy)[i] +=
+          viscosity * 0.5 * (gradient.field(0 * d + 1)[i] + gradient.field(1 * d + 0)[i]);
     }
   }
 }

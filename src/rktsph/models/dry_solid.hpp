@@ -32,9 +32,12 @@ struct Loads {
 struct SourceIntegration {
   double substep_factor = 2.5;  // m = ceil(interval * stiffness / factor)
   int max_substeps = 1000;
+  /// true: y' = R + S(y) with R frozen (prototype R5); false: the spec's additive split,
+  /// y = y0 + interval R + [integral of y' = S(y) from y0] (biased by xi dt/2 with damping).
+  bool frozen_flux = true;
 };
 
-class DrySolid final : public PhysicsModel {
+class DrySolid : public PhysicsModel {
  public:
   DrySolid(Kinematics kinematics, std::vector<std::unique_ptr<Material>> materials, Loads loads,
            SourceIntegration integration);
@@ -57,9 +60,8 @@ class DrySolid final : public PhysicsModel {
   void project_normal_stress_increment(std::int32_t material, std::uint8_t normal_axes,
                                        std::span<const double> start, FieldArray& values,
                                        std::size_t i) const override;
-  void add_artificial_viscosity(std::span<const std::int32_t> material,
-                                const FieldArray& gradient, double alpha_dx,
-                                FieldArray& values) const override;
+  void add_artificial_viscosity(std::span<const std::int32_t> material, const FieldArray& gradient,
+                                double alpha_dx, FieldArray& values) const override;
   void initial_internal(std::int32_t material, FieldArray& internal, std::size_t i) const override;
 
   Kinematics kinematics() const { return kinematics_; }

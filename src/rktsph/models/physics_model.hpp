@@ -36,6 +36,12 @@ class PhysicsModel {
   /// Index of stress component (i, j) among the unknowns, or -1 if it is not carried.
   virtual int stress_field(int i, int j) const = 0;
 
+  /// Index of the pore pressure among the unknowns, or -1 for a dry model.
+  virtual int pore_pressure_field() const { return -1; }
+  /// Biot coefficient alpha of the saturated model (0 for a dry one): total stress
+  /// sigma = sigma' - alpha p_w I.
+  virtual double biot_coefficient() const { return 0.0; }
+
   /// Largest wave speed of the model [m/s] (the drained P-wave speed), for the Courant rule.
   virtual double max_wave_speed() const = 0;
 

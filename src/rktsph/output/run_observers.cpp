@@ -20,9 +20,16 @@ bool reached(double time, double target, double dt) {
   return time >= target - 1e-6 * dt;
 }
 
-const std::vector<std::string>& all_output_fields() {
+const std::vector<std::string>& dry_output_fields() {
   static const std::vector<std::string> names = {
       "velocity", "displacement", "stress", "pressure", "deviatoric_stress", "eps_vp", "material"};
+  return names;
+}
+
+const std::vector<std::string>& saturated_output_fields() {
+  static const std::vector<std::string> names = {"velocity",          "displacement",  "stress",
+                                                 "total_stress",      "pore_pressure", "pressure",
+                                                 "deviatoric_stress", "eps_vp",        "material"};
   return names;
 }
 
@@ -33,15 +40,19 @@ FieldSeriesWriter::FieldSeriesWriter(const Simulation& simulation, std::filesyst
       collection_(directory_ / "series.pvd"),
       interval_(simulation.description().output.interval) {
   const OutputSpec& output = simulation.description().output;
-  selection_ = output.fields.empty() ? all_output_fields() : output.fields;
+  const bool saturated = simulation.model().pore_pressure_field() >= 0;
+  const auto& available = saturated ? saturated_output_fields() : dry_output_fields();
+  selection_ = output.fields.empty() ? available : output.fields;
   for (const std::string& name : selection_) {
-    const bool dry_field = std::find(all_output_fields().begin(), all_output_fields().end(),
-                                     name) != all_output_fields().end();
-    if (!dry_field)
+    if (std::find(available.begin(), available.end(), name) == available.end()) {
+      std::string allowed;
+      for (const std::string& a : available)
+        allowed += (allowed.empty() ? "" : ", ") + a;
       throw InputError(output.where, "output.fields", name,
-                       "field not available for the dry solid model",
-                       "velocity, displacement, stress, pressure, deviatoric_stress, eps_vp, "
-                       "material");
+                       saturated ? "field not available for the saturated model"
+                                 : "field not available for the dry solid model",
+                       allowed);
+    }
   }
   std::filesystem::create_directories(directory_ / "fields");
 }
@@ -54,7 +65,7 @@ void FieldSeriesWriter::write(const Simulation& simulation) {
   const std::vector<double> zeros(n, 0.0);
   std::vector<PointField> fields;
   std::vector<std::vector<double>> derived;  // storage for computed arrays
-  derived.reserve(16);
+  derived.reserve(32);                       // pointers into it are kept: no reallocation
   auto computed = [&](const NodeQuantity& quantity) {
     derived.emplace_back(n);
     for (std::size_t i = 0; i < n; ++i)
@@ -78,6 +89,21 @@ void FieldSeriesWriter::write(const Simulation& simulation) {
         for (int j = 0; j < 3; ++j) {
           const int f = model.stress_field(i, j);
           field.component_data.push_back(f >= 0 ? state.fields.field(f) : zeros.data());
+        }
+      fields.push_back(field);
+    } else if (name == "total_stress") {
+      // sigma = sigma' - alpha p_w I (docs/theory.md §1.1).
+      const double alpha = model.biot_coefficient();
+      const double* pore = state.fields.field(model.pore_pressure_field());
+      PointField field{name, 9, {}};
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          const int f = model.stress_field(i, j);
+          derived.emplace_back(n, 0.0);
+          for (std::size_t k = 0; k < n; ++k)
+            derived.back()[k] =
+                (f >= 0 ? state.fields(f, k) : 0.0) - (i == j ? alpha * pore[k] : 0.0);
+          field.component_data.push_back(derived.back().data());
         }
       fields.push_back(field);
     } else if (name == "pressure" || name == "deviatoric_stress") {
@@ -215,6 +241,21 @@ void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,
   summary.set("boundary_nodes", simulation.step().operators().boundary_nodes.size());
   summary.set("threads", omp_get_max_threads());
   summary.set("version", RKTSPH_VERSION);
+  if (const PressureProjection* projection = simulation.pressure_projection()) {
+    const SolverStatistics& stats = projection->statistics();
+    JsonValue solver = JsonValue::object();
+    solver.set("solves", stats.solves);
+    solver.set("mean_iterations", stats.solves ? static_cast<double>(stats.total_iterations) /
+                                                     static_cast<double>(stats.solves)
+                                               : 0.0);
+    solver.set("max_iterations", stats.max_iterations);
+    solver.set("last_relative_residual", stats.last_residual);
+    solver.set("assembly_seconds", stats.assembly_seconds);
+    solver.set("solve_seconds", stats.solve_seconds);
+    solver.set("projection_seconds", stats.projection_seconds);
+    solver.set("laplacian_scale", stats.laplacian_scale);
+    summary.set("pressure_solver", std::move(solver));
+  }
   write_file_atomically(path_, summary.pretty() + "\n");
 }
 

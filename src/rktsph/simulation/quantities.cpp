@@ -39,6 +39,17 @@ NodeQuantity find_quantity(const Simulation& simulation, const std::string& name
       const int index = static_cast<int>(k);
       return [index](const State& s, std::size_t i) { return s.internal(index, i); };
     }
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      if (name != std::string("total_stress_") + axis_letter(i) + axis_letter(j)) continue;
+      const int field = model.stress_field(i, j), pore = model.pore_pressure_field();
+      if (pore < 0) return {};
+      const double alpha = model.biot_coefficient();
+      const double diagonal = i == j ? 1.0 : 0.0;
+      return [field, pore, alpha, diagonal](const State& s, std::size_t k) {
+        return (field >= 0 ? s.fields(field, k) : 0.0) - diagonal * alpha * s.fields(pore, k);
+      };
+    }
   if (name == "pressure")
     return [&model](const State& s, std::size_t i) {
       return pressure(model.stress_tensor(s.fields, i));
@@ -59,6 +70,9 @@ std::vector<std::string> quantity_names(const Simulation& simulation) {
     names.push_back(name);
   names.push_back("pressure");
   names.push_back("deviatoric_stress");
+  if (model.pore_pressure_field() >= 0)
+    for (const char* c : {"xx", "yy", "zz", "xy"})
+      names.push_back(std::string("total_stress_") + c);
   return names;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "rktsph/materials/material_factory.hpp"
+#include "rktsph/models/saturated_vpw.hpp"
 
 namespace rktsph {
 
@@ -15,6 +16,8 @@ const char* run_status_name(RunStatus status) {
       return "completed";
     case RunStatus::Diverged:
       return "diverged";
+    case RunStatus::Failed:
+      return "failed";
     case RunStatus::Stopped:
       return "stopped";
   }
@@ -45,10 +48,6 @@ Loads loads_of(const CaseDescription& description) {
 }  // namespace
 
 Simulation::Simulation(CaseDescription description) : description_(std::move(description)) {
-  if (description_.model != ModelKind::DrySolid)
-    throw InputError(SourceLocation{description_.file, 0, 0}, "model", "saturated_vpw",
-                     "the saturated v-pw model is not available in this version", "dry_solid");
-
   std::vector<std::unique_ptr<Material>> materials;
   std::vector<std::string> material_names;
   for (const auto& [name, block] : description_.materials) {
@@ -59,9 +58,20 @@ Simulation::Simulation(CaseDescription description) : description_(std::move(des
   groups_ = select_groups(nodes_, description_.groups);
 
   const NumericsSpec& numerics = description_.numerics;
-  model_ = std::make_unique<DrySolid>(
-      kinematics_of(description_), std::move(materials), loads_of(description_),
-      SourceIntegration{numerics.rk_substep_factor, numerics.rk_max_substeps});
+  const SourceIntegration integration{numerics.rk_substep_factor, numerics.rk_max_substeps,
+                                      numerics.frozen_flux_source};
+  if (description_.model == ModelKind::SaturatedVpw) {
+    const PoreFluidSpec& fluid = *description_.pore_fluid;
+    // 1/Q = n/K_w (incompressible grains), k_bar = k/(rho_w g) (docs/theory.md §6.1).
+    const PoreFluid pore{fluid.biot_coefficient, fluid.porosity / fluid.bulk_modulus,
+                         fluid.hydraulic_conductivity / (fluid.density * fluid.gravity),
+                         fluid.density};
+    model_ = std::make_unique<SaturatedVpw>(kinematics_of(description_), std::move(materials),
+                                            loads_of(description_), integration, pore);
+  } else {
+    model_ = std::make_unique<DrySolid>(kinematics_of(description_), std::move(materials),
+                                        loads_of(description_), integration);
+  }
   conditions_ = std::make_unique<BoundaryConditions>(description_, nodes_, groups_, *model_);
 
   StepOptions options;
@@ -75,7 +85,6 @@ Simulation::Simulation(CaseDescription description) : description_(std::move(des
   step_ = std::make_unique<RkTaylorStep>(
       *model_, nodes_, build_step_operators(nodes_, options, conditions_->mirror_planes()),
       *conditions_);
-
   // dt = C dx / c_p (docs/theory.md §2.5), constant: the operators are fixed.
   time_step_ = numerics.time_step ? *numerics.time_step
                                   : numerics.courant * nodes_.spacing / model_->max_wave_speed();
@@ -86,6 +95,13 @@ Simulation::Simulation(CaseDescription description) : description_(std::move(des
                      fmt::format("the run needs {} steps of {:.4g} s to reach {} s", total_steps_,
                                  time_step_, description_.time.end),
                      fmt::format("max_steps >= {} (or a shorter time.end)", total_steps_));
+  if (description_.model == ModelKind::SaturatedVpw) {
+    projection_ = std::make_unique<PressureProjection>(
+        static_cast<const SaturatedVpw&>(*model_), nodes_,
+        step_operator_options(nodes_, options, conditions_->mirror_planes()), *conditions_,
+        *description_.pore_fluid, time_step_);
+    step_->set_projection(projection_.get());
+  }
   initialise_state();
 }
 
@@ -152,7 +168,14 @@ RunStatus Simulation::run() {
   RunStatus status = RunStatus::Completed;
   // Every step is checked; on divergence the observers keep the last good output on disk.
   for (long s = 0; s < total_steps_; ++s) {
-    step_->advance(state_, time_step_);
+    try {
+      step_->advance(state_, time_step_);
+    } catch (const RunError& error) {  // e.g. a pressure solve that does not converge
+      message_ = fmt::format("failed at step {} (t = {:.6g} s): {}", state_.step + 1,
+                             state_.time + time_step_, error.what());
+      status = RunStatus::Failed;
+      break;
+    }
     const std::string problem = find_divergence(state_);
     if (!problem.empty()) {
       message_ =

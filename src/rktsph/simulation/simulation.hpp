@@ -11,6 +11,7 @@
 #include "rktsph/case/case_description.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/models/dry_solid.hpp"
+#include "rktsph/models/pressure_projection.hpp"
 #include "rktsph/simulation/state.hpp"
 #include "rktsph/time/rk_taylor_step.hpp"
 
@@ -18,7 +19,7 @@ namespace rktsph {
 
 class Simulation;
 
-enum class RunStatus { Completed, Diverged, Stopped };
+enum class RunStatus { Completed, Diverged, Failed, Stopped };
 const char* run_status_name(RunStatus status);
 
 /// Something that watches the loop: output, probes, progress, validation metrics.
@@ -58,6 +59,8 @@ class Simulation {
   RkTaylorStep& step() { return *step_; }
   State& state() { return state_; }
   double time_step() const { return time_step_; }
+  /// The pressure projection of the saturated model, or null for a dry one.
+  const PressureProjection* pressure_projection() const { return projection_.get(); }
   long total_steps() const { return total_steps_; }
   double wall_seconds() const { return wall_seconds_; }
 
@@ -73,6 +76,7 @@ class Simulation {
   std::unique_ptr<DrySolid> model_;
   std::unique_ptr<BoundaryConditions> conditions_;
   std::unique_ptr<RkTaylorStep> step_;
+  std::unique_ptr<PressureProjection> projection_;
   State state_;
   double time_step_ = 0.0;
   long total_steps_ = 0;

@@ -44,15 +44,21 @@ bool has_complete_cells(std::span<const StencilSource> stencil, const std::array
 
 }  // namespace
 
+OperatorOptions step_operator_options(const NodeSets& nodes, const StepOptions& options,
+                                      const std::vector<MirrorPlane>& mirrors) {
+  OperatorOptions operator_options;
+  operator_options.kernel = Kernel(options.kernel, nodes.dimension);
+  operator_options.smoothing_length = options.h_over_dx * nodes.spacing;
+  operator_options.interpolation_order = options.interpolation_order;
+  operator_options.mirrors = mirrors;
+  return operator_options;
+}
+
 StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& options,
                                    const std::vector<MirrorPlane>& mirrors) {
   const int d = nodes.dimension;
   const double dx = nodes.spacing;
-  OperatorOptions operator_options;
-  operator_options.kernel = Kernel(options.kernel, d);
-  operator_options.smoothing_length = options.h_over_dx * dx;
-  operator_options.interpolation_order = options.interpolation_order;
-  operator_options.mirrors = mirrors;
+  const OperatorOptions operator_options = step_operator_options(nodes, options, mirrors);
   const double support = operator_options.kernel.support_radius(operator_options.smoothing_length);
   const CellList node_cells(nodes.sph_nodes, support);
   const CellList point_cells(nodes.stress_points, support);
@@ -189,6 +195,15 @@ void RkTaylorStep::advance(State& state, double dt) {
   step_stress_points(state, dt);
   step_boundary_nodes(state, dt);
   step_nodes(state, dt);
+  if (projection_) projection_->project(state, state.time + dt, dt);
+  // Displacement by the trapezoidal rule: the v^n half was added in step 2.
+  const std::size_t ns = nodes_.sph_nodes.size();
+  for (int a = 0; a < model_.dimension(); ++a) {
+    const double* v = state.fields.field(model_.velocity_field(a));
+    double* u = state.displacement.field(a);
+    for (std::size_t i = 0; i < ns; ++i)
+      u[i] += 0.5 * dt * v[i];
+  }
   state.time += dt;
   ++state.step;
 }

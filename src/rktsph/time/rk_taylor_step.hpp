@@ -41,9 +41,21 @@ struct StepOperators {
   double viscosity_length = 0.0;  ///< alpha * dx of the artificial viscosity (0 = off)
 };
 
+/// The kernel, smoothing length, interpolation order and mirrors of the step's operators.
+OperatorOptions step_operator_options(const NodeSets& nodes, const StepOptions& options,
+                                      const std::vector<MirrorPlane>& mirrors);
+
 /// Builds the tables; throws RunError naming the node if a stencil cannot be made regular.
 StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& options,
                                    const std::vector<MirrorPlane>& mirrors);
+
+/// A correction applied after the RK-TSPH pass and its boundary conditions, before the step ends
+/// (the pressure projection of the saturated model, docs/theory.md §6.1). `time` is t^{n+1}.
+class StepProjection {
+ public:
+  virtual ~StepProjection() = default;
+  virtual void project(State& state, double time, double dt) = 0;
+};
 
 class RkTaylorStep {
  public:
@@ -54,6 +66,7 @@ class RkTaylorStep {
   void advance(State& state, double dt);
 
   const StepOperators& operators() const { return operators_; }
+  void set_projection(StepProjection* projection) { projection_ = projection; }
 
  private:
   void step_stress_points(const State& state, double dt);
@@ -66,6 +79,7 @@ class RkTaylorStep {
   const NodeSets& nodes_;
   StepOperators operators_;
   const BoundaryConditions& conditions_;
+  StepProjection* projection_ = nullptr;
   std::vector<std::int32_t> boundary_material_;
   std::vector<std::int32_t> projected_rows_;
   std::vector<Parity> internal_parity_;  // boundary rows whose stress increments are projected

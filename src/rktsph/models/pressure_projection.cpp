@@ -1,0 +1,216 @@
+#include "rktsph/models/pressure_projection.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace rktsph {
+
+struct PressureProjection::Solvers {
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
+                           Eigen::DiagonalPreconditioner<double>>
+      jacobi;
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
+                           Eigen::IncompleteCholesky<double>>
+      cholesky;
+};
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+}  // namespace
+
+PressureProjection::~PressureProjection() = default;
+
+PressureProjection::PressureProjection(const SaturatedVpw& model, const NodeSets& nodes,
+                                       const OperatorOptions& options,
+                                       const BoundaryConditions& conditions,
+                                       const PoreFluidSpec& fluid, double dt)
+    : model_(model),
+      nodes_(nodes),
+      conditions_(conditions),
+      alpha_(model.fluid().biot_coefficient),
+      storage_(model.fluid().storage),
+      permeability_(model.fluid().permeability),
+      beta_(fluid.projection_beta),
+      tolerance_(fluid.solver_tolerance),
+      max_iterations_(fluid.solver_max_iterations),
+      incomplete_cholesky_(fluid.incomplete_cholesky),
+      solvers_(std::make_unique<Solvers>()) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t n = nodes.sph_nodes.size();
+  const int d = nodes.dimension;
+  const CellList cells(nodes.sph_nodes, options.kernel.support_radius(options.smoothing_length));
+  StencilReport report;
+  gradient_ = build_collocated_gradient(nodes.sph_nodes, cells, options, {}, &report);
+  if (!report.degenerate_rows.empty())
+    throw RunError(fmt::format("the SPH node {} has a degenerate collocated stencil",
+                               report.degenerate_rows.front()));
+  laplacian_ =
+      build_laplacian(nodes.sph_nodes, cells, options, nodes.spacing, fluid.laplacian_scale);
+  statistics_.laplacian_scale = laplacian_.scale;
+  density_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    density_[i] = model.material(nodes.node_material[i]).density();
+  drained_.assign(n, 0);
+  for (std::int32_t node : conditions.drained_nodes())
+    drained_[static_cast<std::size_t>(node)] = 1;
+  if (max_iterations_ <= 0) max_iterations_ = 2 * static_cast<long>(n) + 10;
+
+  rhs_.resize(static_cast<Eigen::Index>(n));
+  pressure_.resize(static_cast<Eigen::Index>(n));
+  previous_.resize(static_cast<Eigen::Index>(n));
+  scratch_.resize(static_cast<Eigen::Index>(n));
+  boundary_values_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
+  velocity_ = FieldArray(d, n);
+  velocity_gradient_ = FieldArray(d * d, n);
+  pressure_increment_ = FieldArray(1, n);
+  pressure_gradient_ = FieldArray(d, n);
+  for (int a = 0; a < d; ++a)
+    velocity_parity_.push_back(vector_parity(a));
+  assemble(dt);
+  statistics_.assembly_seconds = seconds_since(start);
+}
+
+void PressureProjection::assemble(double dt) {
+  // K = diag(V_eff)/(Q dt) - (alpha^2 dt/rho_IJ + k_bar) Ltilde with rho_IJ the pair mean, so that
+  // K stays symmetric with several materials; diagonals are rebuilt from the scaled off-diagonals
+  // so that every row of the Laplacian part still sums to zero (eq. 6.3).
+  const auto n = static_cast<Eigen::Index>(nodes_.sph_nodes.size());
+  std::vector<Eigen::Triplet<double>> system, projection, coupling;
+  std::vector<double> system_diagonal(static_cast<std::size_t>(n)),
+      projection_diagonal(static_cast<std::size_t>(n));
+  const auto& ltilde = laplacian_.weighted;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(ltilde, i); it; ++it) {
+      const Eigen::Index j = it.col();
+      if (j == i) continue;
+      const double rho =
+          0.5 * (density_[static_cast<std::size_t>(i)] + density_[static_cast<std::size_t>(j)]);
+      const double projection_value = alpha_ * alpha_ * dt / rho * it.value();
+      const double system_value = -(projection_value + permeability_ * it.value());
+      projection.emplace_back(i, j, projection_value);
+      projection_diagonal[static_cast<std::size_t>(i)] -= projection_value;
+      system_diagonal[static_cast<std::size_t>(i)] -= system_value;
+      const bool row_drained = drained_[static_cast<std::size_t>(i)];
+      const bool column_drained = drained_[static_cast<std::size_t>(j)];
+      if (!row_drained && !column_drained) system.emplace_back(i, j, system_value);
+      if (!row_drained && column_drained) coupling.emplace_back(i, j, system_value);
+    }
+  }
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const double storage = laplacian_.effective_volume[k] * storage_ / dt;
+    // Drained rows keep only their diagonal: K_II p_I = K_II p_bar.
+    system.emplace_back(
+        i, i, drained_[k] ? laplacian_.effective_volume[k] / dt : storage + system_diagonal[k]);
+    projection.emplace_back(i, i, projection_diagonal[k]);
+  }
+  system_.resize(n, n);
+  system_.setFromTriplets(system.begin(), system.end());
+  projection_term_.resize(n, n);
+  projection_term_.setFromTriplets(projection.begin(), projection.end());
+  drained_coupling_.resize(n, n);
+  drained_coupling_.setFromTriplets(coupling.begin(), coupling.end());
+  assembled_dt_ = dt;
+
+  Solvers& s = *solvers_;
+  if (incomplete_cholesky_) {
+    s.cholesky.setTolerance(tolerance_);
+    s.cholesky.setMaxIterations(max_iterations_);
+    s.cholesky.compute(system_);
+    if (s.cholesky.info() != Eigen::Success)
+      throw RunError("the incomplete Cholesky factorisation of the pore-pressure matrix failed");
+  } else {
+    s.jacobi.setTolerance(tolerance_);
+    s.jacobi.setMaxIterations(max_iterations_);
+    s.jacobi.compute(system_);
+  }
+}
+
+void PressureProjection::solve(double time) {
+  const auto start = std::chrono::steady_clock::now();
+  Solvers& s = *solvers_;
+  long iterations;
+  double error;
+  bool converged;
+  if (incomplete_cholesky_) {
+    pressure_ = s.cholesky.solveWithGuess(rhs_, previous_);
+    iterations = s.cholesky.iterations();
+    error = s.cholesky.error();
+    converged = s.cholesky.info() == Eigen::Success;
+  } else {
+    pressure_ = s.jacobi.solveWithGuess(rhs_, previous_);
+    iterations = s.jacobi.iterations();
+    error = s.jacobi.error();
+    converged = s.jacobi.info() == Eigen::Success;
+  }
+  statistics_.solve_seconds += seconds_since(start);
+  ++statistics_.solves;
+  statistics_.total_iterations += iterations;
+  statistics_.max_iterations = std::max(statistics_.max_iterations, iterations);
+  statistics_.last_residual = error;
+  if (!converged || !std::isfinite(error))
+    throw RunError(fmt::format(
+        "the pore-pressure solve did not converge at t = {:.6g} s: relative residual {:.3g} after "
+        "{} iterations (tolerance {:.3g}, limit {}); try preconditioner: incomplete_cholesky, a "
+        "larger solver_max_iterations, or check the drained boundaries",
+        time, error, iterations, tolerance_, max_iterations_));
+}
+
+void PressureProjection::project(State& state, double time, double dt) {
+  const auto start = std::chrono::steady_clock::now();
+  if (dt != assembled_dt_) assemble(dt);
+  const std::size_t n = nodes_.sph_nodes.size();
+  const int d = nodes_.dimension;
+  const int pw = model_.pore_pressure_field();
+
+  // div v* with the collocated gradient (velocity components are odd under their mirror).
+  for (int a = 0; a < d; ++a)
+    std::copy_n(state.fields.field(model_.velocity_field(a)), n, velocity_.field(a));
+  apply_operator(gradient_, velocity_, velocity_parity_, nullptr, &velocity_gradient_);
+  for (std::size_t i = 0; i < n; ++i)
+    previous_[static_cast<Eigen::Index>(i)] = state.fields(pw, i);
+
+  // Right-hand side of eq. 6.3, then the drained values moved to it.
+  scratch_.noalias() = projection_term_ * previous_;
+  for (std::size_t i = 0; i < n; ++i) {
+    double divergence = 0.0;
+    for (int a = 0; a < d; ++a)
+      divergence += velocity_gradient_(a * d + a, i);
+    const double volume = laplacian_.effective_volume[i];
+    rhs_[static_cast<Eigen::Index>(i)] =
+        volume * (storage_ / dt * previous_[static_cast<Eigen::Index>(i)] - alpha_ * divergence) -
+        beta_ * scratch_[static_cast<Eigen::Index>(i)];
+  }
+  const auto& drained = conditions_.drained_nodes();
+  for (std::size_t k = 0; k < drained.size(); ++k)
+    boundary_values_[drained[k]] = conditions_.drained_pressure(k, time);
+  if (!drained.empty()) {
+    scratch_.noalias() = drained_coupling_ * boundary_values_;
+    rhs_ -= scratch_;
+    for (std::int32_t node : drained)
+      rhs_[node] =
+          laplacian_.effective_volume[static_cast<std::size_t>(node)] / dt * boundary_values_[node];
+  }
+  solve(time);
+
+  // Velocity correction, eq. 6.4.
+  for (std::size_t i = 0; i < n; ++i)
+    pressure_increment_(0, i) =
+        pressure_[static_cast<Eigen::Index>(i)] - beta_ * previous_[static_cast<Eigen::Index>(i)];
+  const Parity even[] = {kEven};
+  apply_operator(gradient_, pressure_increment_, even, nullptr, &pressure_gradient_);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double factor = alpha_ * dt / density_[i];
+    for (int a = 0; a < d; ++a)
+      state.fields(model_.velocity_field(a), i) -= factor * pressure_gradient_(a, i);
+    state.fields(pw, i) = pressure_[static_cast<Eigen::Index>(i)];
+  }
+  conditions_.apply(time, state.fields);
+  statistics_.projection_seconds += seconds_since(start);
+}
+
+}  // namespace rktsph

@@ -1,0 +1,77 @@
+// The fractional step of the saturated v-pw model (docs/theory.md §6.1-6.4): after the RK-TSPH
+// pass has given v* with the pore pressure frozen, solve
+//   [V/(Q dt) - (alpha^2 dt/rho) Ltilde - k_bar Ltilde] p^{n+1}
+//       = V p^n/(Q dt) - alpha V div v* - beta (alpha^2 dt/rho) Ltilde p^n          (6.3)
+// by preconditioned conjugate gradients (warm start from p^n), then correct the velocity,
+//   v^{n+1} = v* - (alpha dt/rho) grad(p^{n+1} - beta p^n),                          (6.4)
+// and impose the boundary conditions again. The matrix is assembled once (dt is constant).
+#pragma once
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+#include <memory>
+#include <vector>
+
+#include "rktsph/boundary/boundary_conditions.hpp"
+#include "rktsph/case/case_description.hpp"
+#include "rktsph/geometry/node_sets.hpp"
+#include "rktsph/models/saturated_vpw.hpp"
+#include "rktsph/sph/laplacian.hpp"
+#include "rktsph/time/rk_taylor_step.hpp"
+
+namespace rktsph {
+
+struct SolverStatistics {
+  long solves = 0;
+  long total_iterations = 0;
+  long max_iterations = 0;
+  double last_residual = 0.0;       ///< relative residual of the last solve
+  double assembly_seconds = 0.0;    ///< matrix assembly (once)
+  double solve_seconds = 0.0;       ///< conjugate gradients, all steps
+  double projection_seconds = 0.0;  ///< the whole projection (right-hand side, solve, correction)
+  double laplacian_scale = 1.0;
+};
+
+class PressureProjection final : public StepProjection {
+ public:
+  PressureProjection(const SaturatedVpw& model, const NodeSets& nodes,
+                     const OperatorOptions& options, const BoundaryConditions& conditions,
+                     const PoreFluidSpec& fluid, double dt);
+  ~PressureProjection() override;
+
+  void project(State& state, double time, double dt) override;
+  const SolverStatistics& statistics() const { return statistics_; }
+  const LaplacianMatrix& laplacian() const { return laplacian_; }
+  /// The assembled system matrix (Dirichlet rows decoupled), for tests.
+  const Eigen::SparseMatrix<double>& system() const { return system_; }
+
+ private:
+  void assemble(double dt);
+  void solve(double time);
+
+  const SaturatedVpw& model_;
+  const NodeSets& nodes_;
+  const BoundaryConditions& conditions_;
+  double alpha_, storage_, permeability_, beta_, tolerance_;
+  long max_iterations_;
+  bool incomplete_cholesky_;
+  double assembled_dt_ = 0.0;
+
+  WeightTable gradient_;  // collocated gradient on the SPH nodes, mirror images folded in
+  LaplacianMatrix laplacian_;
+  Eigen::SparseMatrix<double> system_;            // K, drained rows and columns decoupled
+  Eigen::SparseMatrix<double> projection_term_;   // (alpha^2 dt / rho) Ltilde, for the RHS
+  Eigen::SparseMatrix<double> drained_coupling_;  // K(free rows, drained columns)
+  std::vector<char> drained_;
+  std::vector<double> density_;
+
+  struct Solvers;
+  std::unique_ptr<Solvers> solvers_;
+
+  Eigen::VectorXd rhs_, pressure_, previous_, boundary_values_, scratch_;
+  FieldArray velocity_, velocity_gradient_, pressure_increment_, pressure_gradient_;
+  std::vector<Parity> velocity_parity_;
+  SolverStatistics statistics_;
+};
+
+}  // namespace rktsph
