@@ -20,6 +20,16 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_bar_wave_2d},
       {"convergence", "spatial convergence order of the elastic bar and a smooth 2D wave",
        &validate_convergence},
+      {"vpw-consolidation", "Terzaghi consolidation of a saturated column (6.4.2)",
+       &validate_vpw_consolidation},
+      {"vpw-harmonic-column", "saturated column under harmonic load, three permeabilities (6.4.3)",
+       &validate_vpw_harmonic_column},
+      {"vpw-strip-footing-elastic", "fast strip load on a nearly undrained elastic stratum (6.4.4)",
+       &validate_vpw_strip_footing_elastic},
+      {"vpw-localization", "shear band in a saturated softening sample (6.4.5)",
+       &validate_vpw_localization},
+      {"vpw-vertical-cut-footing", "footing on a saturated vertical cut, undrained limit (6.4.6)",
+       &validate_vpw_vertical_cut_footing},
   };
   return cases;
 }

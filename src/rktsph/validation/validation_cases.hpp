@@ -16,5 +16,10 @@ std::vector<CheckResult> validate_slope_viscoplastic(const ValidationContext& co
 std::vector<CheckResult> validate_slope_softening(const ValidationContext& context);
 std::vector<CheckResult> validate_bar_wave_2d(const ValidationContext& context);
 std::vector<CheckResult> validate_convergence(const ValidationContext& context);
+std::vector<CheckResult> validate_vpw_consolidation(const ValidationContext& context);
+std::vector<CheckResult> validate_vpw_harmonic_column(const ValidationContext& context);
+std::vector<CheckResult> validate_vpw_strip_footing_elastic(const ValidationContext& context);
+std::vector<CheckResult> validate_vpw_localization(const ValidationContext& context);
+std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationContext& context);
 
 }  // namespace rktsph
