@@ -127,7 +127,7 @@ struct NumericsSpec {
   double courant = 0.5;             ///< C in dt = C dx / c_p
   std::optional<double> time_step;  ///< fixed dt [s] overriding the Courant rule
   bool frozen_flux_source = true;   ///< R5; false = additive coupling of the spec
-  double rk_substep_factor = 2.5;   ///< m = ceil(tau * lambda_src / factor)
+  double rk_substep_factor = 0.5;   ///< m = ceil(tau * lambda_src / factor), docs/theory.md §2.1
   int rk_max_substeps = 1000;
   bool hourglass_filter = true;  ///< R6, default on in 2D, ignored in 1D
   double hourglass_kappa = 0.1;

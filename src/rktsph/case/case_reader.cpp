@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "rktsph/case/yaml_reader.hpp"
+#include "rktsph/sph/kernel.hpp"
 
 namespace rktsph {
 
@@ -409,10 +410,7 @@ void CaseReader::read_numerics(const YamlNode& node) {
   NumericsSpec& numerics = out_.numerics;
   numerics.where = map.where();
   if (const YamlNode* kernel = map.find("kernel")) {
-    const std::string name = to_choice(*kernel, kKernels);
-    numerics.kernel = name == "cubic_spline"     ? KernelType::CubicSpline
-                      : name == "quintic_spline" ? KernelType::QuinticSpline
-                                                 : KernelType::Gaussian;
+    numerics.kernel = kernel_type_from_name(to_choice(*kernel, kKernels));
   }
   if (const YamlNode* ratio = map.find("h_over_dx")) {
     numerics.h_over_dx = to_number(*ratio, kSmoothingRatioRange);
@@ -921,21 +919,9 @@ void emit_loads_and_initial(YAML::Emitter& out, const CaseDescription& descripti
   out << YAML::EndMap;
 }
 
-std::string kernel_name(KernelType kernel) {
-  switch (kernel) {
-    case KernelType::CubicSpline:
-      return "cubic_spline";
-    case KernelType::QuinticSpline:
-      return "quintic_spline";
-    case KernelType::Gaussian:
-      return "gaussian";
-  }
-  return "cubic_spline";
-}
-
 void emit_numerics(YAML::Emitter& out, const NumericsSpec& numerics) {
   out << YAML::Key << "numerics" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "kernel" << YAML::Value << kernel_name(numerics.kernel);
+  out << YAML::Key << "kernel" << YAML::Value << kernel_type_name(numerics.kernel);
   out << YAML::Key << "h_over_dx" << YAML::Value << number(numerics.h_over_dx);
   out << YAML::Key << "interpolation_order" << YAML::Value << numerics.interpolation_order;
   out << YAML::Key << "courant" << YAML::Value << number(numerics.courant);

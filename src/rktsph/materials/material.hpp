@@ -61,6 +61,15 @@ class Material {
       r = 0.0;
   }
 
+  /// True if the stress lies outside the elastic domain (the viscoplastic flow is non-zero).
+  /// The domain is convex, so a straight stress path between two states that do not flow does
+  /// not flow either.
+  virtual bool flows(const SymmetricTensor& stress, std::span<const double> internal) const {
+    (void)stress;
+    (void)internal;
+    return false;
+  }
+
   /// Relaxation rate of the source [1/s] (for RK sub-stepping); 0 for elastic materials.
   virtual double source_stiffness(const SymmetricTensor& stress,
                                   std::span<const double> internal) const {

@@ -3,8 +3,11 @@
 //
 //   f = q^2 + M(theta)^2 p (p - pc),  M(theta) = 6 sin(phi) / (3 - sin(phi) sin 3theta),
 //   Psi = <f / pc^2>^N  (zero exactly on the ellipse, Q5),
-//   eps_vp_rate = fluidity Psi m,  m = dg/dstress with g = f / pc (associated, seed eq. 2.58),
-//   pc_rate = -((1 + e0) / (lambda_c - kappa_c)) pc tr(eps_vp_rate)  (tension-positive strain).
+//   eps_vp_rate = fluidity Psi m,  m = (M^2 / pc) dg'/dstress with g' = q^2 / M^2 + p (p - pc)
+//   (M held fixed in the scaling). m equals the seed's associated dg/dstress, g = f / pc
+//   (eq. 2.58), on the ellipse, and unlike it stays bounded near the hydrostatic axis (see the
+//   .cpp), pc_rate = -((1 + e0) / (lambda_c - kappa_c)) pc tr(eps_vp_rate)  (tension-positive
+//   strain).
 //
 // Elasticity is linear (constant E, nu) and the void ratio is held at e0.
 #pragma once
@@ -57,11 +60,15 @@ class PerzynaModifiedCamClay final : public Material {
   double yield_function(const StressInvariants& invariants, double preconsolidation_pressure) const;
   /// Psi = <f / pc^2>^N.
   double overstress(const SymmetricTensor& stress, std::span<const double> internal) const;
-  /// C1, C2, C3 of g = f / pc (spec §1.5, seed eq. 2.65). The theta terms are dropped where the
+  bool flows(const SymmetricTensor& stress, std::span<const double> internal) const override {
+    return overstress(stress, internal) > 0.0;
+  }
+  /// C1, C2, C3 of m (spec §1.5, seed eq. 2.65, with the regular potential above). The theta
+  /// terms, which vanish like sqrt(J2) on the hydrostatic axis, are dropped where the
   /// Lode angle is undefined (StressInvariants::lode_defined).
   FlowCoefficients flow_coefficients(const StressInvariants& invariants,
                                      double preconsolidation_pressure) const;
-  /// m = dg/dstress.
+  /// m = (M^2 / pc) dg'/dstress; equal to d(f / pc)/dstress on the ellipse f = 0.
   SymmetricTensor flow_direction(const SymmetricTensor& stress,
                                  double preconsolidation_pressure) const;
   /// (1 + e0) / (lambda_c - kappa_c).

@@ -50,6 +50,9 @@ class PerzynaVonMises final : public Material {
   double effective_yield_stress(std::span<const double> internal) const;
   /// Psi = <(q - F0)/F0>^N.
   double overstress(const SymmetricTensor& stress, std::span<const double> internal) const;
+  bool flows(const SymmetricTensor& stress, std::span<const double> internal) const override {
+    return overstress(stress, internal) > 0.0;
+  }
   /// g = F = q: C1 = 0, C2 = sqrt3, C3 = 0 (spec §1.4).
   static FlowCoefficients flow_coefficients();
   /// m = dq/dstress = (3/2) s / q; zero at q = 0.

@@ -229,13 +229,21 @@ void DrySolid::advance_stress(const Material& material, const double* rate_sigma
   SymmetricTensor stress{};
   for (int c = 0; c < ns; ++c)
     stress[stress_slot_[c]] = sigma[c];
-  // The source may switch on within the step (an elastic state pushed beyond the yield surface by
-  // the flux): size the sub-steps by the larger stiffness of the start and of the elastic
-  // predictor.
+  // Both ends of the straight path sigma + t R inside the (convex) elastic domain: no flow at all
+  // within the step, so the update is exactly elastic.
   SymmetricTensor predictor{};
   for (int c = 0; c < ns; ++c)
     predictor[stress_slot_[c]] = sigma[c] + interval * rate_sigma[c];
   const std::span<const double> kappa_view(kappa, static_cast<std::size_t>(nk));
+  if (integration_.frozen_flux && !material.flows(stress, kappa_view) &&
+      !material.flows(predictor, kappa_view)) {
+    for (int c = 0; c < ns; ++c)
+      sigma[c] += interval * rate_sigma[c];
+    return;
+  }
+  // The source may switch on within the step (an elastic state pushed beyond the yield surface by
+  // the flux): size the sub-steps by the larger stiffness of the start and of the elastic
+  // predictor.
   const double stiffness = std::max(material.source_stiffness(stress, kappa_view),
                                     material.source_stiffness(predictor, kappa_view));
   const int substeps =
