@@ -63,11 +63,12 @@ class Material {
 
   /// True if the stress lies outside the elastic domain (the viscoplastic flow is non-zero).
   /// The domain is convex, so a straight stress path between two states that do not flow does
-  /// not flow either.
+  /// not flow either. The default is the safe answer for a material that does not say: it may
+  /// flow, so its source is always integrated.
   virtual bool flows(const SymmetricTensor& stress, std::span<const double> internal) const {
     (void)stress;
     (void)internal;
-    return false;
+    return !is_elastic();
   }
 
   /// Relaxation rate of the source [1/s] (for RK sub-stepping); 0 for elastic materials.
