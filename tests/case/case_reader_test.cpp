@@ -118,7 +118,7 @@ TEST(CaseReader, MinimalCaseGetsTheSchemaDefaults) {
   EXPECT_EQ(numerics.courant, 0.5);
   EXPECT_FALSE(numerics.time_step.has_value());
   EXPECT_TRUE(numerics.frozen_flux_source);
-  EXPECT_EQ(numerics.rk_substep_factor, 2.5);
+  EXPECT_EQ(numerics.rk_substep_factor, 0.5);
   EXPECT_EQ(numerics.rk_max_substeps, 1000);
   EXPECT_TRUE(numerics.hourglass_filter);
   EXPECT_EQ(numerics.hourglass_kappa, 0.1);

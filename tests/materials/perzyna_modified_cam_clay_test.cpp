@@ -1,7 +1,8 @@
 // Perzyna Modified Cam-Clay on a single material point (spec §1.3, §1.5, Q5): the flow vector and
-// C1, C2, C3 against finite differences of g, the overstress on and off the ellipse, zero
-// volumetric flow at the critical state, the normal compression line under slow isotropic
-// compression, and the sub-step stiffness.
+// C1, C2, C3 against finite differences of the regular potential, the flow vector on the ellipse
+// against the seed's g = f / pc, its bound near the hydrostatic axis, the overstress on and off the
+// ellipse, zero volumetric flow at the critical state, the normal compression line under slow
+// isotropic compression, and the sub-step stiffness.
 #include "rktsph/materials/perzyna_modified_cam_clay.hpp"
 
 #include <gtest/gtest.h>
@@ -50,15 +51,26 @@ double slope_m(double sin_3theta) {
   return 6.0 * sin_phi / (3.0 - sin_phi * sin_3theta);
 }
 
-/// g = (q^2 + M^2 p (p - pc)) / pc from eigenvalue invariants, independent of the material.
-double potential(const SymmetricTensor& stress, double pc) {
+/// The seed's g = (q^2 + M^2 p (p - pc)) / pc from eigenvalue invariants, independent of the
+/// material.
+double seed_potential(const SymmetricTensor& stress, double pc) {
   const auto invariants = principal_invariants(stress);
   const double m = slope_m(invariants.sin_3theta);
   const double p = invariants.pressure;
   return (invariants.q * invariants.q + m * m * p * (p - pc)) / pc;
 }
 
-TEST(PerzynaModifiedCamClay, FlowVectorAndCoefficientsMatchGradientOfPotential) {
+/// (frozen_slope^2 / pc) g' with g' = q^2 / M(theta)^2 + p (p - pc). With frozen_slope = M at the
+/// point of evaluation its gradient there is the flow vector the material uses (the M^2 / pc
+/// scaling is a factor, not differentiated).
+double regular_potential(const SymmetricTensor& stress, double pc, double frozen_slope) {
+  const auto invariants = principal_invariants(stress);
+  const double m = slope_m(invariants.sin_3theta);
+  const double p = invariants.pressure;
+  return frozen_slope * frozen_slope / pc * (invariants.q * invariants.q / (m * m) + p * (p - pc));
+}
+
+TEST(PerzynaModifiedCamClay, FlowVectorAndCoefficientsMatchGradientOfRegularPotential) {
   const PerzynaModifiedCamClay material = make_material(1.0);
   std::mt19937 generator(31);
   std::uniform_real_distribution<double> pressure(-0.2, 1.5), deviator(0.05, 1.5),
@@ -69,7 +81,10 @@ TEST(PerzynaModifiedCamClay, FlowVectorAndCoefficientsMatchGradientOfPotential) 
     const SymmetricTensor stress = rotated_principal(
         principal_from_invariants(pressure(generator) * pc, deviator(generator) * pc, theta),
         random_rotation(generator));
-    const auto g = [pc](const SymmetricTensor& s) { return potential(s, pc); };
+    const double frozen_slope = slope_m(principal_invariants(stress).sin_3theta);
+    const auto g = [pc, frozen_slope](const SymmetricTensor& s) {
+      return regular_potential(s, pc, frozen_slope);
+    };
     // Step 1 Pa on a 1e5 Pa scale: truncation ~ (1/1e4)^2 even for the theta terms, whose
     // length scale is sqrt(J2) >= 0.05 pc / sqrt3 ~ 3e3 Pa; round-off ~1e-15 * 1e5 / 1.
     const SymmetricTensor expected = finite_difference_gradient(g, stress, 1.0);
@@ -86,6 +101,55 @@ TEST(PerzynaModifiedCamClay, FlowVectorAndCoefficientsMatchGradientOfPotential) 
     EXPECT_NEAR(c.c1, projected[0], scale / std::sqrt(3.0));
     EXPECT_NEAR(c.c2, projected[1], scale * std::sqrt(2.0));
     EXPECT_NEAR(c.c3, projected[2], scale / j2);
+  }
+}
+
+TEST(PerzynaModifiedCamClay, FlowVectorOnEllipseIsGradientOfSeedPotential) {
+  // On f = 0 the regular flow vector must be the associated one of the seed (eq. 2.58).
+  const PerzynaModifiedCamClay material = make_material(1.0);
+  std::mt19937 generator(5);
+  std::uniform_real_distribution<double> pressure(0.1, 0.9), lode(-28.0, 28.0);
+  for (int sample = 0; sample < 20; ++sample) {
+    const double theta = lode(generator) * kPi / 180.0;
+    const double p = pressure(generator) * kPreconsolidation;
+    const double q = slope_m(std::sin(3.0 * theta)) * std::sqrt(p * (kPreconsolidation - p));
+    const SymmetricTensor stress =
+        rotated_principal(principal_from_invariants(p, q, theta), random_rotation(generator));
+    const auto g = [](const SymmetricTensor& s) { return seed_potential(s, kPreconsolidation); };
+    // q >= M sqrt(0.09) pc ~ 3e4 Pa: the 1 Pa step keeps the truncation near 1e-9 relative.
+    const SymmetricTensor expected = finite_difference_gradient(g, stress, 1.0);
+    EXPECT_LT(distance(material.flow_direction(stress, kPreconsolidation), expected),
+              1e-6 * tensor_norm(expected))
+        << "sample " << sample;
+  }
+}
+
+TEST(PerzynaModifiedCamClay, FlowVectorStaysBoundedNearHydrostaticAxis) {
+  // Off the critical state (p != pc/2) and off the ellipse, as q -> 0 at fixed theta, m must
+  // tend to its hydrostatic value M^2 (2p - pc)/pc dp/dstress = -M^2 (2p - pc)/(3 pc) I. The rest
+  // is 2q dq/pc (size sqrt(3/2) 2q/pc, as |dq| = sqrt(3/2)) plus the theta term
+  // 2q^2/(M pc) |dM/dtheta| |dtheta| with |dtheta| = sqrt(3/2)/q and |dM/dtheta| <= 18 sin^2(phi)
+  // /(3 - sin phi)^2 = 0.50 for phi = 25°, M >= 0.82: at most 1.5 q/pc. Bound: 5 q/pc.
+  // (The seed's theta term, 2M p (p - pc)/pc dM, would instead grow like pc/q.)
+  const PerzynaModifiedCamClay material = make_material(1.0);
+  std::mt19937 generator(23);
+  for (double pressure_ratio : {0.1, 0.3, 0.8, 1.2}) {
+    for (double theta_degrees : {-20.0, 10.0, 25.0}) {
+      const double theta = theta_degrees * kPi / 180.0;
+      const double p = pressure_ratio * kPreconsolidation;
+      const double slope = slope_m(std::sin(3.0 * theta));
+      const double axial =
+          -slope * slope * (2.0 * p - kPreconsolidation) / (3.0 * kPreconsolidation);
+      const SymmetricTensor axis_value = {axial, axial, axial, 0.0, 0.0, 0.0};
+      const Eigen::Matrix3d rotation = random_rotation(generator);
+      for (double q_ratio : {1e-2, 1e-4, 1e-6}) {
+        const double q = q_ratio * kPreconsolidation;
+        const SymmetricTensor flow = material.flow_direction(
+            rotated_principal(principal_from_invariants(p, q, theta), rotation), kPreconsolidation);
+        EXPECT_LT(distance(flow, axis_value), 5.0 * q_ratio + 1e-9)
+            << "p/pc " << pressure_ratio << " theta " << theta_degrees << " q/pc " << q_ratio;
+      }
+    }
   }
 }
 

@@ -72,23 +72,39 @@ double PerzynaModifiedCamClay::overstress(const SymmetricTensor& stress,
                         parameters_.exponent);
 }
 
+// Why not the gradient of g = f / pc (seed eq. 2.58): its theta part is
+// (2 M p (p - pc) / pc) dM/dstress, and dM/dstress ~ 1/sqrt(J2) near the hydrostatic axis, so m
+// blows up there at any p other than 0 and pc, which a state crossing the axis (isotropic loading)
+// meets. The regular potential
+//   g' = q^2 / M^2 + p (p - pc)   (zero on the same ellipse)
+// has dg'/dstress = (2q/M^2) dq + (2p - pc) dp - (2 q^2 / M^3) dM. Scaled by M^2 / pc (a positive
+// factor, so the direction of flow is unchanged) it gives
+//   m = [2q dq + M^2 (2p - pc) dp - (2 q^2 / M) dM] / pc.
+// The q and p terms are those of the seed's m. On the ellipse q^2 = -M^2 p (p - pc), so the M
+// term equals the seed's 2 M p (p - pc) / pc dM: the two vectors coincide where the flow starts.
+// Off the ellipse the M term is ~ q^2 / sqrt(J2) ~ sqrt(J2) and vanishes on the axis.
 FlowCoefficients PerzynaModifiedCamClay::flow_coefficients(const StressInvariants& invariants,
                                                            double preconsolidation_pressure) const {
   const double pc = preconsolidation_pressure;
   const double p = invariants.pressure;
   const double ratio = critical_state_ratio(invariants.sin_3theta);
   FlowCoefficients c;
-  // dg/dI1 = dg/dp dp/dI1 with dg/dp = M^2 (2p - pc)/pc and dp/dI1 = -1/3.
+  // C1 = M^2 (2p - pc)/pc times dp/dI1 = -1/3.
   c.c1 = -ratio * ratio * (2.0 * p - pc) / (3.0 * pc);
-  // dg/dsqrtJ2 = dg/dq sqrt3 = 6 sqrtJ2 / pc.
+  // C2 (q part) = 2q dq/dsqrtJ2 / pc = 6 sqrtJ2 / pc, as q = sqrt3 sqrtJ2.
   const double root_j2 = std::sqrt(invariants.j2);
   c.c2 = 6.0 * root_j2 / pc;
   if (!invariants.lode_defined) return c;
-  // dg/dtheta = (2 M p (p - pc)/pc) dM/dtheta and dM/dtheta carries cos 3theta, which cancels the
+  // The theta term is -(2 q^2 / (M pc)) dM/dtheta dtheta/dstress with
+  // dM/dtheta = 18 sin^2(phi) cos 3theta / (3 - sin(phi) sin 3theta)^2. Its cos 3theta cancels the
   // tan 3theta and 1/cos 3theta of C2 and C3 (seed eq. 2.65), so nothing is singular at +-30°.
+  // theta_factor is (dg/dtheta) / (2 cos 3theta) in the notation of invariants.hpp.
   const double denominator = 3.0 - sin_friction_angle_ * invariants.sin_3theta;
-  const double theta_factor = ratio * p * (p - pc) / pc * 18.0 * sin_friction_angle_ *
+  const double q_squared = 3.0 * invariants.j2;
+  const double theta_factor = -q_squared / (ratio * pc) * 18.0 * sin_friction_angle_ *
                               sin_friction_angle_ / (denominator * denominator);
+  // C2 gains -(sin 3theta / sqrtJ2) 2 theta_factor ~ sqrtJ2, and C3 = -sqrt3 J2^(-3/2)
+  // theta_factor ~ 1/sqrtJ2 multiplies m3 ~ J2: both terms of m vanish like sqrtJ2 on the axis.
   c.c2 -= invariants.sin_3theta / root_j2 * 2.0 * theta_factor;
   c.c3 = -std::sqrt(3.0) / (invariants.j2 * root_j2) * theta_factor;
   return c;

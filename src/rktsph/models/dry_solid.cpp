@@ -1,4 +1,5 @@
 #include "rktsph/models/dry_solid.hpp"
+#include "rktsph/core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -115,7 +116,7 @@ void DrySolid::flux_rate(std::span<const std::int32_t> material, const FieldArra
   auto grad = [&](int f, int c, std::int64_t i) { return gradient.field(f * d + c)[i]; };
   switch (kinematics_) {
     case Kinematics::Bar1D:
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
       for (std::int64_t i = 0; i < n; ++i) {
         const Material& m = *materials_[material[i]];
         rate.field(0)[i] = grad(1, 0, i) / m.density();
@@ -125,7 +126,7 @@ void DrySolid::flux_rate(std::span<const std::int32_t> material, const FieldArra
     case Kinematics::PlaneStrain:
     case Kinematics::PlaneStress: {
       const bool plane_strain = kinematics_ == Kinematics::PlaneStrain;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
       for (std::int64_t i = 0; i < n; ++i) {
         const Material& m = *materials_[material[i]];
         const ElasticConstants& e = m.elastic();
@@ -289,7 +290,7 @@ void DrySolid::advance(std::span<const std::int32_t> material, const FieldArray&
   const int d = dimension();
   const int ns = stress_count_;
   const int nk = internal_count_;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
   for (std::int64_t i = 0; i < n; ++i) {
     const Material& m = *materials_[material[i]];
     double v[3] = {}, rate_v[3] = {};
@@ -369,7 +370,7 @@ void DrySolid::add_artificial_viscosity(std::span<const std::int32_t> material,
   const int d = dimension();
   const int xx = stress_field(0, 0), yy = stress_field(1, 1), xy = stress_field(0, 1);
   const double c = max_wave_speed();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
   for (std::int64_t i = 0; i < n; ++i) {
     // q = alpha rho c_p dx eps_dot (docs/theory.md §2.7); c_p of the stiffest material keeps the
     // coefficient uniform across material interfaces.

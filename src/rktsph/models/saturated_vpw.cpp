@@ -1,4 +1,5 @@
 #include "rktsph/models/saturated_vpw.hpp"
+#include "rktsph/core/parallel.hpp"
 
 #include <algorithm>
 
@@ -28,7 +29,7 @@ void SaturatedVpw::flux_rate(std::span<const std::int32_t> material, const Field
   const int d = dimension();
   const int pw = pore_pressure_field();
   const double alpha = fluid_.biot_coefficient;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
   for (std::int64_t i = 0; i < n; ++i) {
     const double density = this->material(material[i]).density();
     for (int a = 0; a < d; ++a)

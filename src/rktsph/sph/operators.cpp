@@ -1,4 +1,5 @@
 #include "rktsph/sph/operators.hpp"
+#include "rktsph/core/parallel.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -244,6 +245,160 @@ WeightTable build_collocated_gradient(const PointCloud& points, const CellList& 
   return table;
 }
 
+namespace {
+
+// Parity signs per field and reflection pattern (three axes: eight patterns), so that the inner
+// loop multiplies instead of branching.
+struct ParitySigns {
+  double sign[kMaxFields * 8];
+};
+
+ParitySigns parity_signs(std::span<const Parity> parity) {
+  ParitySigns signs{};
+  for (std::size_t f = 0; f < parity.size(); ++f)
+    for (unsigned bits = 0; bits < 8; ++bits)
+      signs.sign[f * 8 + bits] =
+          (std::popcount(static_cast<unsigned>(parity[f] & bits)) & 1u) ? -1.0 : 1.0;
+  return signs;
+}
+
+struct Inputs {
+  const double* field[kMaxFields];
+};
+
+// Interpolation only (the hourglass filter's round trip). FieldCount > 0 fixes the number of
+// fields at compile time so that the field loop unrolls; 0 reads it at run time.
+template <int FieldCount, bool Reflect>
+void interpolate_rows(const WeightTable& table, const Inputs& input, int runtime_fields,
+                      const ParitySigns& signs, FieldArray& out) {
+  const int fields = FieldCount > 0 ? FieldCount : runtime_fields;
+  const auto rows = static_cast<std::int64_t>(table.rows());
+  const std::int64_t* row_start = table.row_start.data();
+  const std::int32_t* source = table.source.data();
+  const std::uint8_t* reflection = table.reflection.data();
+  const double* weight = table.interpolation.data();
+  double* output[kMaxFields];
+  for (int f = 0; f < fields; ++f)
+    output[f] = out.field(f);
+#pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
+  for (std::int64_t i = 0; i < rows; ++i) {
+    double value[kMaxFields] = {};
+    for (std::int64_t k = row_start[i]; k < row_start[i + 1]; ++k) {
+      const std::int32_t j = source[k];
+      const double w = weight[k];
+      if constexpr (Reflect) {
+        const double* sign = signs.sign + reflection[k];
+        for (int f = 0; f < fields; ++f)
+          value[f] += w * sign[f * 8] * input.field[f][j];
+      } else {
+        for (int f = 0; f < fields; ++f)
+          value[f] += w * input.field[f][j];
+      }
+    }
+    for (int f = 0; f < fields; ++f)
+      output[f][i] = value[f];
+  }
+}
+
+// Interpolation (optional) and gradient in D dimensions.
+template <int FieldCount, int D, bool Reflect>
+void differentiate_rows(const WeightTable& table, const Inputs& input, int runtime_fields,
+                        const ParitySigns& signs, FieldArray* out_values,
+                        FieldArray& out_gradient) {
+  const int fields = FieldCount > 0 ? FieldCount : runtime_fields;
+  const auto rows = static_cast<std::int64_t>(table.rows());
+  const std::int64_t* row_start = table.row_start.data();
+  const std::int32_t* source = table.source.data();
+  const std::uint8_t* reflection = table.reflection.data();
+  const double* weight = table.interpolation.data();
+  const double* gradient[3] = {table.gradient[0].data(), table.gradient[1].data(),
+                               table.gradient[2].data()};
+#pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
+  for (std::int64_t i = 0; i < rows; ++i) {
+    double value[kMaxFields] = {};
+    double derivative[kMaxFields * D] = {};
+    for (std::int64_t k = row_start[i]; k < row_start[i + 1]; ++k) {
+      const std::int32_t j = source[k];
+      const double w = weight[k];
+      double g[D];
+      for (int c = 0; c < D; ++c)
+        g[c] = gradient[c][k];
+      const double* sign = signs.sign + (Reflect ? reflection[k] : 0);
+      for (int f = 0; f < fields; ++f) {
+        const double v = Reflect ? sign[f * 8] * input.field[f][j] : input.field[f][j];
+        value[f] += w * v;
+        for (int c = 0; c < D; ++c)
+          derivative[f * D + c] += g[c] * v;
+      }
+    }
+    if (out_values)
+      for (int f = 0; f < fields; ++f)
+        out_values->field(f)[i] = value[f];
+    for (int f = 0; f < fields; ++f)
+      for (int c = 0; c < D; ++c)
+        out_gradient.field(f * D + c)[i] = derivative[f * D + c];
+  }
+}
+
+template <bool Reflect>
+void dispatch_interpolation(const WeightTable& table, const Inputs& input, int fields,
+                            const ParitySigns& signs, FieldArray& out) {
+  switch (fields) {
+    case 1:
+      return interpolate_rows<1, Reflect>(table, input, fields, signs, out);
+    case 2:
+      return interpolate_rows<2, Reflect>(table, input, fields, signs, out);
+    case 5:
+      return interpolate_rows<5, Reflect>(table, input, fields, signs, out);
+    case 6:
+      return interpolate_rows<6, Reflect>(table, input, fields, signs, out);
+    case 7:
+      return interpolate_rows<7, Reflect>(table, input, fields, signs, out);
+    default:
+      return interpolate_rows<0, Reflect>(table, input, fields, signs, out);
+  }
+}
+
+template <int D, bool Reflect>
+void dispatch_gradient(const WeightTable& table, const Inputs& input, int fields,
+                       const ParitySigns& signs, FieldArray* values, FieldArray& gradient) {
+  switch (fields) {
+    case 1:
+      return differentiate_rows<1, D, Reflect>(table, input, fields, signs, values, gradient);
+    case 2:
+      return differentiate_rows<2, D, Reflect>(table, input, fields, signs, values, gradient);
+    case 5:
+      return differentiate_rows<5, D, Reflect>(table, input, fields, signs, values, gradient);
+    case 6:
+      return differentiate_rows<6, D, Reflect>(table, input, fields, signs, values, gradient);
+    case 7:
+      return differentiate_rows<7, D, Reflect>(table, input, fields, signs, values, gradient);
+    default:
+      return differentiate_rows<0, D, Reflect>(table, input, fields, signs, values, gradient);
+  }
+}
+
+template <bool Reflect>
+void dispatch_dimension(const WeightTable& table, const Inputs& input, int fields,
+                        const ParitySigns& signs, FieldArray* values, FieldArray& gradient) {
+  switch (table.dimension) {
+    case 1:
+      return dispatch_gradient<1, Reflect>(table, input, fields, signs, values, gradient);
+    case 2:
+      return dispatch_gradient<2, Reflect>(table, input, fields, signs, values, gradient);
+    default:
+      return dispatch_gradient<3, Reflect>(table, input, fields, signs, values, gradient);
+  }
+}
+
+}  // namespace
+
+void drop_gradients(WeightTable& table) {
+  for (auto& g : table.gradient)
+    std::vector<double>().swap(g);
+  table.has_gradient = false;
+}
+
 void apply_operator(const WeightTable& table, const FieldArray& in, std::span<const Parity> parity,
                     FieldArray* out_values, FieldArray* out_gradient) {
   const int field_count = in.field_count();
@@ -255,42 +410,23 @@ void apply_operator(const WeightTable& table, const FieldArray& in, std::span<co
       (out_gradient && (out_gradient->point_count() < table.rows() ||
                         out_gradient->field_count() < field_count * d)))
     throw std::invalid_argument("apply_operator: output arrays smaller than the table");
-  const auto rows = static_cast<std::int64_t>(table.rows());
-  const std::int64_t* row_start = table.row_start.data();
-  const std::int32_t* source = table.source.data();
-  const std::uint8_t* reflection = table.reflection.data();
-  const double* interpolation = table.interpolation.data();
-  const double* gradient[3] = {table.gradient[0].data(), table.gradient[1].data(),
-                               table.gradient[2].data()};
-  const double* input[kMaxFields];
+  if (out_gradient && !table.has_gradient)
+    throw std::invalid_argument("apply_operator: this table holds no gradient weights");
+  Inputs input{};
   for (int f = 0; f < field_count; ++f)
-    input[f] = in.field(f);
-
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < rows; ++i) {
-    double value[kMaxFields] = {};
-    double derivative[kMaxFields * 3] = {};
-    for (std::int64_t k = row_start[i]; k < row_start[i + 1]; ++k) {
-      const std::int32_t j = source[k];
-      const double w = interpolation[k];
-      const double gx = gradient[0][k], gy = gradient[1][k], gz = gradient[2][k];
-      const std::uint8_t bits = table.has_reflections ? reflection[k] : 0;
-      for (int f = 0; f < field_count; ++f) {
-        double v = input[f][j];
-        if (std::popcount(static_cast<unsigned>(parity[f] & bits)) & 1u) v = -v;
-        value[f] += w * v;
-        derivative[f * 3 + 0] += gx * v;
-        derivative[f * 3 + 1] += gy * v;
-        derivative[f * 3 + 2] += gz * v;
-      }
-    }
-    if (out_values)
-      for (int f = 0; f < field_count; ++f)
-        out_values->field(f)[i] = value[f];
-    if (out_gradient)
-      for (int f = 0; f < field_count; ++f)
-        for (int c = 0; c < d; ++c)
-          out_gradient->field(f * d + c)[i] = derivative[f * 3 + c];
+    input.field[f] = in.field(f);
+  const ParitySigns signs = parity_signs(parity);
+  const bool reflect = table.has_reflections;
+  if (out_gradient) {
+    if (reflect)
+      dispatch_dimension<true>(table, input, field_count, signs, out_values, *out_gradient);
+    else
+      dispatch_dimension<false>(table, input, field_count, signs, out_values, *out_gradient);
+  } else if (out_values) {
+    if (reflect)
+      dispatch_interpolation<true>(table, input, field_count, signs, *out_values);
+    else
+      dispatch_interpolation<false>(table, input, field_count, signs, *out_values);
   }
 }
 

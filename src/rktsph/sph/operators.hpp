@@ -37,6 +37,7 @@ struct WeightTable {
   std::vector<double> interpolation;
   std::array<std::vector<double>, 3> gradient;
   bool has_reflections = false;
+  bool has_gradient = true;  ///< false once drop_gradients() freed them (interpolation-only use)
 
   std::size_t rows() const { return row_start.empty() ? 0 : row_start.size() - 1; }
   std::size_t entries() const { return source.size(); }
@@ -116,6 +117,9 @@ WeightTable build_collocated_gradient(const PointCloud& points, const CellList& 
                                       const OperatorOptions& options,
                                       std::span<const std::int32_t> rows = {},
                                       StencilReport* report = nullptr);
+
+/// Frees the gradient weights of a table used only for interpolation (the hourglass filter).
+void drop_gradients(WeightTable& table);
 
 /// Applies `table` to `field_count` fields: out_values (may be null) gets the interpolation,
 /// out_gradient (may be null) gets dimension * field_count fields, gradient of field f along

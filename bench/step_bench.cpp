@@ -1,0 +1,97 @@
+// The full RK-TSPH step (docs/theory.md §2.2) on BAR-WAVE-2D (../shared/bench/bar-wave-2d.md),
+// sizes S, M, L, XL, read from cases/bar-wave-2d-<size>/case.yaml. Only
+// `step().advance(state, dt)` is timed: no setup, no output, no probes. The step counts per
+// measurement are the benchmark's timing protocol (200 / 100 / 50 / 50).
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "rktsph/case/case_reader.hpp"
+#include "rktsph/simulation/simulation.hpp"
+
+#ifndef RKTSPH_SOURCE_DIR
+#define RKTSPH_SOURCE_DIR "."
+#endif
+
+namespace rktsph {
+namespace {
+
+/// The case file of one size; RKTSPH_CASES_DIR (if set) replaces the source tree's cases/.
+std::string case_path(const std::string& size) {
+  const char* override_dir = std::getenv("RKTSPH_CASES_DIR");
+  const std::string cases_dir =
+      override_dir ? std::string(override_dir) : std::string(RKTSPH_SOURCE_DIR) + "/cases";
+  return cases_dir + "/bar-wave-2d-" + size + "/case.yaml";
+}
+
+/// One simulation at a time (XL holds about a gigabyte), reused across the repetitions of its
+/// size so that setup is paid once. The state keeps advancing from one repetition to the next,
+/// which does not change the cost of a linear elastic step.
+Simulation& simulation_for(const std::string& size) {
+  static std::unique_ptr<Simulation> cached;
+  static std::string cached_size;
+  if (cached && cached_size == size) return *cached;
+  cached.reset();
+  cached = std::make_unique<Simulation>(read_case_file(case_path(size)));
+  cached_size = size;
+  return *cached;
+}
+
+bool all_finite(const FieldArray& fields) {
+  for (const double value : fields.data())
+    if (!std::isfinite(value)) return false;
+  return true;
+}
+
+void BM_BarWaveStep(benchmark::State& bench_state, const std::string& size) {
+  Simulation* simulation = nullptr;
+  try {
+    simulation = &simulation_for(size);
+  } catch (const std::exception& error) {
+    bench_state.SkipWithError(error.what());
+    return;
+  }
+  RkTaylorStep& step = simulation->step();
+  State& state = simulation->state();
+  const double dt = simulation->time_step();
+
+  for (auto _ : bench_state) {
+    step.advance(state, dt);
+    benchmark::ClobberMemory();
+  }
+
+  if (!all_finite(state.fields)) {
+    bench_state.SkipWithError("the state became non-finite");
+    return;
+  }
+  const auto nodes = static_cast<std::int64_t>(simulation->nodes().sph_nodes.size());
+  bench_state.SetItemsProcessed(bench_state.iterations() * nodes);  // particle-steps
+  bench_state.counters["nodes"] = static_cast<double>(nodes);
+  bench_state.counters["threads"] = static_cast<double>(omp_get_max_threads());
+  bench_state.counters["dt_us"] = dt * 1e6;
+}
+
+BENCHMARK_CAPTURE(BM_BarWaveStep, s, std::string("s"))
+    ->Iterations(200)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_BarWaveStep, m, std::string("m"))
+    ->Iterations(100)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_BarWaveStep, l, std::string("l"))
+    ->Iterations(50)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_BarWaveStep, xl, std::string("xl"))
+    ->Iterations(50)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
+}  // namespace rktsph

@@ -1,0 +1,225 @@
+#!/usr/bin/env bash
+# Runs the benchmarks of bench/ and prints the BAR-WAVE-2D speed table (bench/README.md,
+# ../shared/bench/bar-wave-2d.md, "Timing protocol"). Called by `make bench` as
+#   tools/run_benchmarks.sh BUILD_DIR
+#
+# 1. Kernel benchmarks (operator application, neighbour tables) at each thread count, and the
+#    serial table-build benchmark once, medians of RKTSPH_BENCH_REPETITIONS runs.
+# 2. The full step on BAR-WAVE-2D per size and thread count, one process each, so that the peak
+#    resident memory (from /usr/bin/time -v) belongs to that size alone.
+#
+# Settings (environment):
+#   RKTSPH_BENCH_THREADS      thread counts, default "1 2"
+#   RKTSPH_BENCH_SIZES        BAR-WAVE-2D sizes, default "s m l xl"
+#   RKTSPH_BENCH_REPETITIONS  repetitions per measurement, default 3
+#   RKTSPH_BENCH_XL_THREADS   thread counts for XL, default: the largest of RKTSPH_BENCH_THREADS
+#                             (XL at one thread alone would take about 80 s per repetition)
+#   RKTSPH_BENCH_XL_REPETITIONS  default 1
+#   RKTSPH_BENCH_KERNELS      0 skips part 1
+#   RKTSPH_BENCH_OUT          directory for the JSON results and logs, default BUILD_DIR/bench
+# Exits non-zero only if a benchmark program fails (or reports an error).
+set -uo pipefail
+
+if [[ $# -ne 1 ]]; then
+  echo "usage: $0 BUILD_DIR" >&2
+  exit 2
+fi
+build_dir=$1
+bench=$build_dir/rktsph_bench
+if [[ ! -x $bench ]]; then
+  echo "error: $bench not found; build it first (make build)" >&2
+  exit 2
+fi
+
+threads_list=${RKTSPH_BENCH_THREADS:-"1 2"}
+sizes=${RKTSPH_BENCH_SIZES:-"s m l xl"}
+repetitions=${RKTSPH_BENCH_REPETITIONS:-3}
+largest_threads=$(tr ' ' '\n' <<<"$threads_list" | sort -n | tail -1)
+xl_threads=${RKTSPH_BENCH_XL_THREADS:-$largest_threads}
+xl_repetitions=${RKTSPH_BENCH_XL_REPETITIONS:-1}
+out_dir=${RKTSPH_BENCH_OUT:-$build_dir/bench}
+mkdir -p "$out_dir"
+
+time_program=""
+if [[ -x /usr/bin/time ]] && /usr/bin/time -v true >/dev/null 2>&1; then
+  time_program=/usr/bin/time
+fi
+
+failures=0
+started=$(date +%s)
+
+echo "== rktsph benchmarks: $(date -u '+%Y-%m-%d %H:%M:%S UTC') on $(hostname)"
+echo "   cores: $(nproc); cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')"
+echo "   load average at start: $(cat /proc/loadavg)"
+echo "   results and logs: $out_dir"
+
+# Prints a median table of the kernel benchmarks from Google Benchmark JSON files.
+summarise_kernels() {
+  python3 - "$@" <<'PYTHON'
+import json
+import sys
+
+rows = []
+for path in sys.argv[1:]:
+    with open(path) as handle:
+        report = json.load(handle)
+    threads = report["context"].get("omp_threads", "?")
+    for run in report["benchmarks"]:
+        if run.get("error_occurred"):
+            rows.append((run["run_name"], threads, "ERROR", run.get("error_message", ""), "", ""))
+            continue
+        is_single = run.get("run_type") == "iteration"
+        if not is_single and run.get("aggregate_name") != "median":
+            continue
+        name = run["run_name"].replace("/real_time", "")
+        bytes_per_second = run.get("bytes_per_second")
+        rows.append((
+            name,
+            threads,
+            f"{run['real_time']:.3f} {run['time_unit']}",
+            f"{run.get('items_per_second', 0.0):.3e}",
+            f"{bytes_per_second / 1e9:.2f}" if bytes_per_second else "-",
+            run.get("label", ""),
+        ))
+width = max([len(r[0]) for r in rows] + [9])
+print(f"{'benchmark':<{width}}  {'threads':>7}  {'median time':>14}  {'items/s':>10}  "
+      f"{'GB/s':>6}  label")
+for name, threads, time, items, gigabytes, label in rows:
+    print(f"{name:<{width}}  {threads:>7}  {time:>14}  {items:>10}  {gigabytes:>6}  {label}")
+PYTHON
+}
+
+# Runs the benchmark program; arguments after the first two are passed on.
+#   run_bench THREADS LOG_FILE ARGS...
+run_bench() {
+  local threads=$1 log=$2
+  shift 2
+  OMP_NUM_THREADS=$threads "$bench" --benchmark_context=omp_threads="$threads" "$@" >"$log" 2>&1
+}
+
+if [[ ${RKTSPH_BENCH_KERNELS:-1} != 0 ]]; then
+  echo
+  echo "== kernel benchmarks (medians of $repetitions; the table build is serial, run once)"
+  kernel_files=()
+  for threads in $threads_list; do
+    json=$out_dir/kernels-t$threads.json
+    if run_bench "$threads" "$out_dir/kernels-t$threads.log" \
+      --benchmark_filter='^BM_(ApplyOperator|NodeToStressPointTable)/' \
+      --benchmark_repetitions="$repetitions" --benchmark_report_aggregates_only=true \
+      --benchmark_min_time=0.1 --benchmark_out="$json" --benchmark_out_format=json; then
+      kernel_files+=("$json")
+    else
+      echo "FAILED: kernel benchmarks at $threads threads (see $out_dir/kernels-t$threads.log)"
+      failures=$((failures + 1))
+    fi
+  done
+  json=$out_dir/table-build.json
+  if run_bench 1 "$out_dir/table-build.log" --benchmark_filter='^BM_BuildOperatorTables/' \
+    --benchmark_out="$json" --benchmark_out_format=json; then
+    kernel_files+=("$json")
+  else
+    echo "FAILED: table-build benchmark (see $out_dir/table-build.log)"
+    failures=$((failures + 1))
+  fi
+  if [[ ${#kernel_files[@]} -gt 0 ]]; then
+    summarise_kernels "${kernel_files[@]}" || failures=$((failures + 1))
+  fi
+fi
+
+echo
+echo "== BAR-WAVE-2D step (advance() only; 200 / 100 / 50 / 50 steps per measurement at S / M / L / XL)"
+step_records=$out_dir/steps.tsv
+: >"$step_records"
+for size in $sizes; do
+  size_threads=$threads_list
+  size_repetitions=$repetitions
+  if [[ $size == xl ]]; then
+    size_threads=$xl_threads
+    size_repetitions=$xl_repetitions
+  fi
+  for threads in $size_threads; do
+    json=$out_dir/step-$size-t$threads.json
+    log=$out_dir/step-$size-t$threads.log
+    load=$(cut -d' ' -f1 /proc/loadavg)
+    rss_kb=""
+    args=(--benchmark_filter="^BM_BarWaveStep/$size/" --benchmark_repetitions="$size_repetitions"
+      --benchmark_report_aggregates_only=true --benchmark_out="$json" --benchmark_out_format=json)
+    if [[ -n $time_program ]]; then
+      timing=$out_dir/step-$size-t$threads.time
+      OMP_NUM_THREADS=$threads "$time_program" -v -o "$timing" "$bench" \
+        --benchmark_context=omp_threads="$threads" "${args[@]}" >"$log" 2>&1
+      status=$?
+      rss_kb=$(awk -F': ' '/Maximum resident set size/ {print $2}' "$timing" 2>/dev/null)
+    else
+      run_bench "$threads" "$log" "${args[@]}"
+      status=$?
+    fi
+    if [[ $status -ne 0 ]]; then
+      echo "FAILED: BAR-WAVE-2D $size at $threads threads (exit $status, see $log)"
+      failures=$((failures + 1))
+      continue
+    fi
+    printf '%s\t%s\t%s\t%s\t%s\n' "$size" "$threads" "$json" "${rss_kb:--}" "$load" \
+      >>"$step_records"
+    echo "   done: $size at $threads threads ($(($(date +%s) - started)) s elapsed)"
+  done
+done
+
+echo
+if ! python3 - "$step_records" "${time_program:+rss}" <<'PYTHON'
+import json
+import sys
+
+records_path = sys.argv[1]
+show_rss = len(sys.argv) > 2 and sys.argv[2] == "rss"
+errors = 0
+rows = []
+with open(records_path) as records:
+    for line in records:
+        size, threads, path, rss_kb, load = line.rstrip("\n").split("\t")
+        with open(path) as handle:
+            report = json.load(handle)
+        runs = report["benchmarks"]
+        failed = [r for r in runs if r.get("error_occurred")]
+        if failed or not runs:
+            errors += 1
+            message = failed[0].get("error_message", "") if failed else "no result"
+            print(f"ERROR: {size} at {threads} threads: {message}")
+            continue
+        medians = [r for r in runs if r.get("aggregate_name") == "median"]
+        run = medians[0] if medians else runs[0]
+        scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[run["time_unit"]]
+        seconds_per_step = run["real_time"] * scale
+        nodes = int(run["nodes"])
+        rss = f"{int(rss_kb) / 1024:.0f}" if rss_kb not in ("", "-") else "-"
+        rows.append((size.upper(), nodes, threads, seconds_per_step, nodes / seconds_per_step, rss,
+                     load, "median" if medians else "1 run"))
+
+header = f"{'size':>4}  {'nodes':>9}  {'threads':>7}  {'s/step':>10}  {'particle-steps/s':>16}"
+if show_rss:
+    header += f"  {'peak RSS MB':>11}"
+header += f"  {'load(1 min)':>11}  of"
+print(header)
+for size, nodes, threads, seconds, rate, rss, load, basis in rows:
+    line = f"{size:>4}  {nodes:>9}  {threads:>7}  {seconds:>10.4g}  {rate:>16.3e}"
+    if show_rss:
+        line += f"  {rss:>11}"
+    line += f"  {load:>11}  {basis}"
+    print(line)
+target = [r for r in rows if r[0] == "L" and r[2] == "2"]
+if target:
+    verdict = "met" if target[0][4] >= 3e6 else "NOT met"
+    print(f"\nProject target >= 3.0e6 particle-steps/s at L with 2 threads: {verdict} "
+          f"({target[0][4]:.3e}).")
+sys.exit(1 if errors else 0)
+PYTHON
+then
+  failures=$((failures + 1))
+fi
+
+echo
+echo "   load average at end: $(cat /proc/loadavg)  (total $(($(date +%s) - started)) s)"
+if [[ $failures -ne 0 ]]; then
+  echo "$failures benchmark program(s) failed" >&2
+  exit 1
+fi
