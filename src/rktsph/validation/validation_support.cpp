@@ -19,7 +19,8 @@ ProbeTable ProbeTable::read(const std::filesystem::path& path) {
   std::string line;
   std::getline(in, line);
   std::stringstream header(line);
-  for (std::string name; std::getline(header, name, ',');) table.names_.push_back(name);
+  for (std::string name; std::getline(header, name, ',');)
+    table.names_.push_back(name);
   table.columns_.resize(table.names_.size());
   while (std::getline(in, line)) {
     std::stringstream row(line);
@@ -67,6 +68,19 @@ double ProbeTable::max_abs(const std::string& name, double t0, double t1) const 
   return result;
 }
 
+double ProbeTable::rms(const std::string& name, double t0, double t1) const {
+  const auto& t = time();
+  const auto& v = column(name);
+  double sum = 0.0;
+  int count = 0;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= t0 && t[i] < t1) {
+      sum += v[i] * v[i];
+      ++count;
+    }
+  return count ? std::sqrt(sum / count) : std::numeric_limits<double>::quiet_NaN();
+}
+
 double ProbeTable::first_crossing(const std::string& name, double level) const {
   const auto& t = time();
   const auto& v = column(name);
@@ -111,6 +125,8 @@ std::filesystem::path run_for_validation(const ValidationContext& context,
   return directory;
 }
 
-double relative_error(double value, double reference) { return std::abs(value / reference - 1.0); }
+double relative_error(double value, double reference) {
+  return std::abs(value / reference - 1.0);
+}
 
 }  // namespace rktsph

@@ -24,6 +24,7 @@ class ProbeTable {
   double mean(const std::string& name, double t0, double t1) const;
   double max(const std::string& name, double t0, double t1) const;
   double max_abs(const std::string& name, double t0, double t1) const;
+  double rms(const std::string& name, double t0, double t1) const;
   /// First time the column crosses `level` (linear interpolation between samples), or NaN.
   double first_crossing(const std::string& name, double level) const;
   /// Arrival time of a step from 0 to `plateau` within [t0, t1], from the area under the
