@@ -45,6 +45,15 @@ test: deps build
 bench: deps build
 	tools/run_benchmarks.sh $(BUILD_DIR)
 
+# The validation report: every case in full, its plots and field pictures, and a check in a
+# headless browser that the page shows them. The report is checked even when a case failed, and
+# the target then fails with the validation's status.
+REPORT ?= validation-report
+validate: deps-report build
+	@status=0; $(BUILD_DIR)/rktsph validate --all --report $(REPORT) || status=$$?; \
+	tools/check_report.sh $(REPORT) && \
+	echo "Report: $(REPORT)/index.html (and index.md)" && exit $$status
+
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
 

@@ -1,11 +1,14 @@
-// rktsph — command line: run, check, validate.
+// rktsph — command line: run, check, validate, plot.
 // Exit status: 0 success, 1 validation failed, 2 bad input (case file or arguments),
 // 3 a run diverged or could not proceed.
 #include <fmt/format.h>
 #include <omp.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 
@@ -34,6 +37,50 @@ std::filesystem::path default_cases_directory() {
   if (const char* env = std::getenv("RKTSPH_CASES")) return env;
   if (std::filesystem::exists("cases")) return "cases";
   return std::filesystem::path(RKTSPH_SOURCE_DIR) / "cases";
+}
+
+// The report and plotting tools are Python scripts (matplotlib) in tools/; found like the cases.
+std::filesystem::path tools_directory() {
+  if (const char* env = std::getenv("RKTSPH_TOOLS")) return env;
+  if (std::filesystem::exists("tools/make_report.py")) return "tools";
+  return std::filesystem::path(RKTSPH_SOURCE_DIR) / "tools";
+}
+
+constexpr const char* kPython = "/usr/bin/python3";
+
+/// Runs a program with its arguments (no shell, so no quoting problems) and returns its exit
+/// status, or -1 if it could not be started or did not exit normally.
+int run_program(const std::vector<std::string>& arguments) {
+  std::vector<char*> argv;
+  for (const std::string& argument : arguments)
+    argv.push_back(const_cast<char*>(argument.c_str()));
+  argv.push_back(nullptr);
+  std::cout.flush();
+  const pid_t child = fork();
+  if (child < 0) return -1;
+  if (child == 0) {
+    execv(argv[0], argv.data());
+    std::cerr << "rktsph: cannot start " << arguments[0] << ": " << std::strerror(errno) << "\n";
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// Runs a tools/ script; its own messages go to stderr. Throws RunError if it cannot start.
+int run_tool(const std::string& script, std::vector<std::string> arguments) {
+  const std::filesystem::path path = tools_directory() / script;
+  if (!std::filesystem::exists(path))
+    throw RunError(
+        fmt::format("{} not found (set RKTSPH_TOOLS to the tools/ folder)", path.string()));
+  arguments.insert(arguments.begin(), {kPython, path.string()});
+  const int status = run_program(arguments);
+  if (status == 127 || status < 0)
+    throw RunError(
+        fmt::format("could not run {} {} (is python3 installed?)", kPython, path.string()));
+  return status;
 }
 
 int command_run(const std::string& case_path, const std::string& output, int threads,
@@ -73,7 +120,7 @@ int command_check(const std::string& case_path, const std::vector<std::string>& 
 }
 
 int command_validate(std::vector<std::string> names, bool all, bool quick, bool json,
-                     const std::string& output, int threads) {
+                     const std::string& output, const std::string& report, int threads) {
   if (threads > 0) omp_set_num_threads(threads);
   const auto& cases = validation_cases();
   if (all || names.empty())
@@ -93,10 +140,19 @@ int command_validate(std::vector<std::string> names, bool all, bool quick, bool 
     if (std::find(selected.begin(), selected.end(), &*it) == selected.end())
       selected.push_back(&*it);
   }
+  // report.json goes next to the runs (<output>/<case>/), and the page refers to both, so the
+  // runs of a report are kept in its folder.
+  if (!report.empty() && !output.empty() &&
+      std::filesystem::weakly_canonical(report) != std::filesystem::weakly_canonical(output))
+    throw InputError({}, "validate --output", output, "the runs of a report go to its folder",
+                     "the --report folder, or no --output");
   ValidationContext context;
   context.cases_directory = default_cases_directory();
-  context.output_directory = output.empty() ? "results/validation" : output;
+  context.output_directory = !report.empty()  ? report
+                             : output.empty() ? "results/validation"
+                                              : output;
   context.quick = quick;
+  context.write_report = !report.empty();
   bool all_passed = true;
   for (const ValidationCase* validation : selected) {
     const ValidationResult result = run_validation(*validation, context);
@@ -113,7 +169,34 @@ int command_validate(std::vector<std::string> names, bool all, bool quick, bool 
                                check.name, check.value, check.reference, check.tolerance,
                                check.unit, check.passed ? "ok" : "FAIL");
   }
+  if (!report.empty()) {
+    std::vector<std::string> arguments = {report};
+    for (const ValidationCase* validation : selected)
+      arguments.push_back(validation->name);
+    if (run_tool("make_report.py", arguments) != 0) {
+      std::cerr << "rktsph: the report in " << report << " is incomplete (see above)\n";
+      return kExitRun;
+    }
+  }
   return all_passed ? 0 : kExitValidationFailed;
+}
+
+int command_plot(const std::string& run_directory, const std::string& field, int component,
+                 double time, double magnification, const std::string& output) {
+  std::vector<std::string> arguments = {run_directory,
+                                        "--field",
+                                        field,
+                                        "--component",
+                                        std::to_string(component),
+                                        "--magnify",
+                                        fmt::format("{:.17g}", magnification),
+                                        "-o",
+                                        output};
+  if (time >= 0.0) arguments.insert(arguments.end(), {"--time", fmt::format("{:.17g}", time)});
+  const int status = run_tool("plot_field.py", arguments);
+  // plot_field.py: 2 for input it cannot use (no such run, field or component).
+  if (status == 0) return 0;
+  return status == 2 ? kExitInput : kExitRun;
 }
 
 }  // namespace
@@ -150,6 +233,27 @@ int main(int argc, char** argv) {
   validate->add_flag("--json", json, "One JSON object per case per line");
   validate->add_option("-o,--output", output, "Folder for the runs (default results/validation)");
   validate->add_option("--threads", threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+  std::string report;
+  validate->add_option("--report", report,
+                       "Also write a report with plots to this folder (index.html, index.md); "
+                       "the runs go there too. Needs python3-matplotlib");
+
+  std::string run_directory, field;
+  int component = -1;
+  double plot_time = -1.0, magnification = 0.0;
+  CLI::App* plot = app.add_subcommand(
+      "plot", "Draw one output field of a run on its (deformed) particles to a PNG file");
+  plot->add_option("run", run_directory, "Run folder (with series.pvd)")->required();
+  plot->add_option("--field", field, "Field: stress, velocity, displacement, pressure, ...")
+      ->required();
+  plot->add_option("--component", component,
+                   "Entry of the field's tuple (stress: 0 xx, 1 xy, 4 yy; velocity: 0 x, 1 y); "
+                   "default: a scalar as is, a vector or tensor as its magnitude")
+      ->check(CLI::Range(-1, 8));
+  plot->add_option("--time", plot_time, "Output time to draw, nearest one [s] (default: last)");
+  plot->add_option("--magnify", magnification,
+                   "Draw particles at x + M * displacement (default 0: undeformed)");
+  plot->add_option("-o,--output", output, "PNG file to write")->required();
 
   try {
     app.parse(argc, argv);
@@ -161,7 +265,9 @@ int main(int argc, char** argv) {
   try {
     if (*run) return command_run(case_path, output, threads, sets, quiet);
     if (*check) return command_check(case_path, sets);
-    if (*validate) return command_validate(names, all, quick, json, output, threads);
+    if (*validate) return command_validate(names, all, quick, json, output, report, threads);
+    if (*plot)
+      return command_plot(run_directory, field, component, plot_time, magnification, output);
   } catch (const InputError& error) {
     std::cerr << "rktsph: " << error.what() << "\n";
     return kExitInput;

@@ -67,6 +67,18 @@ TEST(RkTaylorStep, ElasticBarAtCourantOneIsExact) {
   EXPECT_GT(compared, 100);
 }
 
+TEST(RkTaylorStep, DisplacementIsTheTimeIntegralOfTheVelocity) {
+  // The driven end moves at exactly -V0 from t = 0, so its displacement is -V0 t (trapezoidal
+  // integration of a constant is exact); the free end is still at rest before L/c.
+  Simulation simulation(read_case_text(kBar, "bar.yaml"));
+  const double dt = simulation.time_step();
+  for (int s = 0; s < 15; ++s) simulation.step().advance(simulation.state(), dt);
+  const State& state = simulation.state();
+  const std::size_t driven = simulation.nodes().sph_nodes.size() - 1;
+  EXPECT_NEAR(state.displacement(0, driven), -0.1 * state.time, 1e-15);
+  EXPECT_EQ(state.displacement(0, 0), 0.0);
+}
+
 std::string plane_wave_case(double courant) {
   return fmt::format(R"(
 name: wave

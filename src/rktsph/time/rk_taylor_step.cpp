@@ -281,7 +281,7 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
 
   const int d = model_.dimension();
   const std::size_t ns = nodes_.sph_nodes.size();
-  // Displacement by the trapezoidal rule: half with v^n now, half with v^{n+1} below.
+  // Displacement by the trapezoidal rule: half with v^n now, the v^{n+1} half in advance().
   for (int a = 0; a < d; ++a) {
     const double* v = state.fields.field(model_.velocity_field(a));
     double* u = state.displacement.field(a);
@@ -292,12 +292,6 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   project_free_faces(boundary_start_, state.fields, false);
   if (operators_.hourglass_filter) filter_hourglass(state.fields);
   conditions_.apply(state.time + dt, state.fields);
-  for (int a = 0; a < d; ++a) {
-    const double* v = state.fields.field(model_.velocity_field(a));
-    double* u = state.displacement.field(a);
-    for (std::size_t i = 0; i < ns; ++i)
-      u[i] += 0.5 * dt * v[i];
-  }
 }
 
 void RkTaylorStep::project_free_faces(const FieldArray& start, FieldArray& values,

@@ -5,6 +5,30 @@
 //   {"case": NAME, "passed": bool, "wall_seconds": x,
 //    "checks": [{"name", "value", "reference", "tolerance", "unit", "passed"}]}
 // Relative errors and ratios are plain fractions, angles in degrees, times in seconds.
+//
+// Report (`rktsph validate --report DIR`): a case may also describe figures and field pictures
+// for people to look at. The C++ side knows the physics, so it supplies the data of every curve,
+// measured and analytical; tools/make_report.py only draws them. How a case adds them:
+//
+//   std::vector<CheckResult> validate_my_case(const ValidationContext& context) {
+//     ...run, measure...
+//     if (context.report) {  // null unless reporting: build no figure data otherwise
+//       context.report->describe("What the case is and what it is compared with.");
+//       context.report->add_figure({"mid_stress", "Stress at mid-bar", "time [s]",
+//                                   "stress [Pa]",
+//                                   {{"SPH", probes.time(), probes.column("mid.stress_xx"),
+//                                     "line"},
+//                                    sample_curve("exact", 0.0, end, 2000, exact_stress,
+//                                                 "dashed")}});
+//       context.report->add_picture({"final_stress", run_directory.string(), "stress", 0,
+//                                    -1.0, 20.0, "sigma_xx on the deformed lattice"});
+//     }
+//     return checks;
+//   }
+//
+// `run_validation` then writes <output>/<case>/report.json (the JSON-line fields plus
+// "description", "figures" and "pictures"); the field pictures need the run's series.pvd, so
+// the run must write field output at the time asked for.
 #pragma once
 
 #include <filesystem>
@@ -23,12 +47,71 @@ struct CheckResult {
   bool passed = false;
 };
 
+/// One curve of a figure. x and y have the same length; NaN leaves a gap.
+struct Series {
+  std::string label;
+  std::vector<double> x, y;
+  std::string style;  ///< "line", "dashed" (references, by convention) or "points"
+};
+
+/// A 2D plot, drawn to <report>/<case>/<name>.png.
+struct Figure {
+  std::string name;  ///< file stem: letters, digits, '_', '-', '.'; unique within the case
+  std::string title, x_label, y_label;
+  std::vector<Series> series;
+};
+
+/// A picture of one output field of a run, drawn by tools/plot_field.py (as `rktsph plot`) to
+/// <report>/<case>/<name>.png.
+struct FieldPicture {
+  std::string name;           ///< file stem, as Figure::name, unique among figures and pictures
+  std::string run_directory;  ///< the run folder holding series.pvd (as run_for_validation gives)
+  std::string field;          ///< a field of the field output: "stress", "velocity", ...
+  int component = -1;         ///< index in the VTK tuple (stress: 0 = xx, 4 = yy, 1 = xy);
+                              ///< -1: the value of a scalar, the magnitude of a vector/tensor
+  double time = -1;           ///< the output nearest this time [s]; negative: the last one
+  double magnification = 0;   ///< positions drawn at x + magnification * displacement
+  std::string caption;
+};
+
+/// Where a case puts its figures, pictures and description while it runs (the sink of
+/// ValidationContext::report). Throws std::invalid_argument for a malformed figure or picture
+/// (bad or repeated name, unknown style, x and y of different lengths): programming errors.
+class ValidationReport {
+ public:
+  /// A paragraph saying what the case is; replaces the registry's one-line summary.
+  void describe(std::string description);
+  void add_figure(Figure figure);
+  void add_picture(FieldPicture picture);
+
+  const std::string& description() const { return description_; }
+  const std::vector<Figure>& figures() const { return figures_; }
+  const std::vector<FieldPicture>& pictures() const { return pictures_; }
+
+ private:
+  void claim_name(const std::string& name);
+
+  std::string description_;
+  std::vector<Figure> figures_;
+  std::vector<FieldPicture> pictures_;
+  std::vector<std::string> names_;
+};
+
+/// A curve sampled from a function at `count` >= 2 evenly spaced x in [x0, x1]: for analytical
+/// references. Steps look vertical once the spacing is small against the plot width.
+Series sample_curve(std::string label, double x0, double x1, int count,
+                    const std::function<double(double)>& function, std::string style = "dashed");
+
 struct ValidationResult {
   std::string case_name;
   bool passed = false;
   double wall_seconds = 0.0;
   std::vector<CheckResult> checks;
   std::string error;  ///< why the case could not run, if it could not
+  // Filled only when reporting (ValidationContext::write_report).
+  std::string description;  ///< the case's own, else the registry summary
+  std::vector<Figure> figures;
+  std::vector<FieldPicture> pictures;
 };
 
 struct ValidationContext {
@@ -36,6 +119,10 @@ struct ValidationContext {
   std::filesystem::path output_directory;  ///< runs go to <output>/<case>/<run>
   bool quick = false;
   bool quiet = true;
+  /// Set by the caller of run_validation to have <output>/<case>/report.json written.
+  bool write_report = false;
+  /// Set by run_validation for the case while it runs when write_report is on; null otherwise.
+  ValidationReport* report = nullptr;
 };
 
 struct ValidationCase {
@@ -48,7 +135,10 @@ struct ValidationCase {
 /// Every bundled validation case, in a fixed order.
 const std::vector<ValidationCase>& validation_cases();
 
-/// Runs one case, catching errors into `error` (a case that cannot run fails).
+/// Runs one case, catching errors into `error` (a case that cannot run fails). With
+/// context.write_report, also collects the case's figures and pictures and writes
+/// <output>/<case>/report.json (even when the case failed or threw); a failure to write it is
+/// reported in `error` and fails the case.
 ValidationResult run_validation(const ValidationCase& validation, const ValidationContext& context);
 
 /// A check passes when |value - reference| <= tolerance (absolute) ...
@@ -60,5 +150,11 @@ CheckResult check_at_most(std::string name, double value, double reference, doub
 
 /// The JSON line of the output contract.
 std::string validation_json_line(const ValidationResult& result);
+
+/// The content of report.json: the JSON-line fields plus "description", "figures" and
+/// "pictures". Picture run directories under `report_root` are written relative to it (so that a
+/// report folder can be moved); others are written absolute.
+std::string validation_report_json(const ValidationResult& result,
+                                   const std::filesystem::path& report_root);
 
 }  // namespace rktsph
