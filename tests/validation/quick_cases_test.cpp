@@ -18,9 +18,9 @@ class QuickValidationSlow : public testing::TestWithParam<std::string> {};
 const std::map<std::string, std::string>& known_open_problems() {
   static const std::map<std::string, std::string> problems = {
       {"vpw-strip-footing-elastic",
-       "open problem: the hourglass filter drains undrained soil next to drained faces "
-       "(centreline pressure drifts by 30 % under a held load); without the filter a "
-       "pore-pressure checkerboard grows at the footing edge. See docs/theory.md §6.5."},
+       "open problem: a pore-pressure checkerboard under the footing edge (7.6 % of max p_w) "
+       "that no gradient operator sees at h = 0.75 dx; the hourglass filter no longer acts on "
+       "p_w because that drained undrained soil. See docs/theory.md §6.5."},
       {"vpw-localization", "not implemented yet (issue V3)"},
   };
   return problems;

@@ -203,6 +203,7 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
     filter_points_ = FieldArray(nf, nv);
     filter_round_trip_ = FieldArray(nf, ns);
     filter_residual_ = FieldArray(nf, ns);
+    if (model.pore_pressure_field() >= 0) pore_buffer_.assign(ns, 0.0);
   }
 }
 
@@ -311,6 +312,27 @@ void RkTaylorStep::project_free_faces(const FieldArray& start, FieldArray& value
 }
 
 void RkTaylorStep::filter_hourglass(FieldArray& fields) {
+  // Saturated model: sigma' and p_w both jump at a drained face while the total stress does not;
+  // filtering them separately spreads that boundary layer and drains undrained soil. So the
+  // filter acts on the total normal stress sigma'_aa - alpha p_w and leaves p_w untouched
+  // (docs/theory.md §6.5).
+  const int pore = model_.pore_pressure_field();
+  const std::size_t count_nodes = nodes_.sph_nodes.size();
+  const double alpha = model_.biot_coefficient();
+  auto shift_normal_stress = [&](double sign) {
+    for (int a = 0; a < 3; ++a) {
+      const int f = model_.stress_field(a, a);
+      if (f < 0) continue;
+      double* stress = fields.field(f);
+      for (std::size_t i = 0; i < count_nodes; ++i)
+        stress[i] += sign * alpha * pore_buffer_[i];
+    }
+  };
+  if (pore >= 0) {
+    std::copy_n(fields.field(pore), count_nodes, pore_buffer_.begin());
+    shift_normal_stress(-1.0);
+  }
+
   // f <- f - kappa (r1 - Pi r1), r1 = f - Pi f, Pi = round trip through the stress points
   // (docs/theory.md §3.3; symbol 1 - kappa (1 - a^2)^2, removes the checkerboard).
   auto round_trip = [&](const FieldArray& in) {
@@ -332,6 +354,10 @@ void RkTaylorStep::filter_hourglass(FieldArray& fields) {
 #pragma omp parallel for schedule(static) if (count > kParallelThreshold)
   for (std::int64_t k = 0; k < count; ++k)
     out[k] -= kappa * (residual[k] - trip[k]);
+  if (pore >= 0) {
+    std::copy_n(pore_buffer_.begin(), count_nodes, fields.field(pore));
+    shift_normal_stress(1.0);
+  }
 }
 
 }  // namespace rktsph

@@ -99,6 +99,7 @@ class RkTaylorStep {
   FieldArray filter_points_;
   FieldArray filter_round_trip_;
   FieldArray filter_residual_;
+  std::vector<double> pore_buffer_;  // p_w kept out of the filter (saturated model)
 };
 
 }  // namespace rktsph
