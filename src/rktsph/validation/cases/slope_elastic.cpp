@@ -1,11 +1,78 @@
-// PLACEHOLDER, being written: until then this case reports that it is not implemented (and fails).
-#include "rktsph/core/error.hpp"
+// Thesis §4.5.1, validation.md §4.5.1: elastic block with a vertical free face under gravity
+// ramped over 0.5 s with mass damping (20/s), run to 2 s. References: far from the face the
+// vertical stress is the overburden rho g depth; where lateral strain is prevented the horizontal
+// stress is K0 = nu/(1 - nu) of it (gravity_column reference, validation.md §4.5.1); a damped
+// elastic body must come to rest.
+#include <algorithm>
+#include <cmath>
+
 #include "rktsph/validation/validation_cases.hpp"
+#include "rktsph/validation/validation_support.hpp"
 
 namespace rktsph {
 
-std::vector<CheckResult> validate_slope_elastic(const ValidationContext&) {
-  throw RunError("validation case 'slope-elastic' is not implemented yet");
+namespace {
+
+// As in cases/slope-elastic/case.yaml.
+constexpr double kDensity = 2000.0, kGravity = 9.81, kPoisson = 0.3;
+constexpr double kTop = 10.0, kFace = 30.0, kCutHeight = 10.0;
+
+struct StaticErrors {
+  double vertical_stress = 0.0;  // max |sigma_yy / (-rho g depth) - 1|, far field
+  double k0 = 0.0;               // max |sigma_xx / sigma_yy / K0 - 1| on the fixed base
+};
+
+StaticErrors measure_static_state(const Simulation& simulation) {
+  const NodeSets& nodes = simulation.nodes();
+  const FieldArray& fields = simulation.state().fields;
+  const int xx = simulation.model().stress_field(0, 0), yy = simulation.model().stress_field(1, 1);
+  const double k0 = kPoisson / (1.0 - kPoisson), dx = nodes.spacing;
+  StaticErrors errors;
+  for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i) {
+    const double x = nodes.sph_nodes.position[0][i], y = nodes.sph_nodes.position[1][i];
+    const double depth = kTop - y;
+    // Far field: at least 2H behind the face, where the face's influence on sigma_v has decayed,
+    // and at least 1 m (and 2 dx) deep, below the top row whose overburden is a fraction of dx.
+    if (x <= kFace - 2.0 * kCutHeight && depth >= std::max(1.0, 2.0 * dx))
+      errors.vertical_stress = std::max(
+          errors.vertical_stress, relative_error(fields(yy, i), -kDensity * kGravity * depth));
+    // Laterally confined: on the rigid rough base u_x = 0 along the face, so eps_xx = 0 exactly
+    // and sigma_xx / sigma_yy = lambda / (lambda + 2G) = K0 whatever the shear. In the block above
+    // it, the free face 3H away still relieves the lateral stress by several per cent (a slab that
+    // can expand towards the face), so the base is the one region where K0 is a closed form. Nodes
+    // within H of the face (the toe's stress concentration) are left out.
+    if (std::abs(y) < 1e-9 * dx && x <= kFace - kCutHeight)
+      errors.k0 = std::max(errors.k0, relative_error(fields(xx, i) / fields(yy, i), k0));
+  }
+  return errors;
+}
+
+}  // namespace
+
+std::vector<CheckResult> validate_slope_elastic(const ValidationContext& context) {
+  // Quick: dx = 1 m (10 cells over the cut height) instead of 0.5 m.
+  std::vector<CaseOverride> overrides = {{"output.interval", "0"}};
+  if (context.quick) overrides.push_back({"geometry.spacing", "1.0"});
+  const CaseDescription description = load_bundled_case(context, "slope-elastic", overrides);
+  StaticErrors errors;
+  const auto directory = run_for_validation(
+      context, description, context.quick ? "dx1" : "dx05",
+      [&](const Simulation& simulation) { errors = measure_static_state(simulation); });
+  // Largest velocity component anywhere at the end against its peak during the run.
+  const ProbeTable probes = ProbeTable::read(directory / "probes.csv");
+  const auto& time = probes.time();
+  const double end = time.back();
+  const double peak = std::max(probes.max_abs("all.velocity_x", 0.0, end),
+                               probes.max_abs("all.velocity_y", 0.0, end));
+  const double last = std::max(std::abs(probes.column("all.velocity_x").back()),
+                               std::abs(probes.column("all.velocity_y").back()));
+  // The same tolerances at both resolutions: the static checks are met with a wide margin at
+  // dx = 1 m already (the prototype found the confined column exact to 1e-6 at h = 0.75 dx).
+  return {
+      check_at_most("vertical_stress_error", errors.vertical_stress, 0.0, 0.02, "fraction"),
+      check_at_most("k0_error", errors.k0, 0.0, 0.03, "fraction"),
+      check_at_most("residual_velocity_ratio", last / peak, 0.0, 1e-3, "fraction"),
+  };
 }
 
 }  // namespace rktsph
