@@ -125,6 +125,40 @@ std::filesystem::path run_for_validation(const ValidationContext& context,
   return directory;
 }
 
+double material_parameter(const CaseDescription& description, const std::string& material,
+                          const std::string& key) {
+  const auto block = description.materials.find(material);
+  if (block == description.materials.end())
+    throw RunError("case " + description.name + ": no material '" + material + "'");
+  const auto it = block->second.values.find(key);
+  if (it == block->second.values.end())
+    throw RunError("case " + description.name + ": material '" + material + "' has no '" + key +
+                   "'");
+  return it->second.value;
+}
+
+std::vector<double> add_row_probes(CaseDescription& description, const std::string& prefix,
+                                   double x_min, double x_max, double y0, double spacing, int rows,
+                                   const std::string& field) {
+  std::vector<double> heights;
+  for (int row = 0; row < rows; ++row) {
+    const double y = y0 + row * spacing;
+    GroupSpec group;
+    group.name = fmt::format("{}{}", prefix, row);
+    group.kind = GroupSpec::Kind::Box;
+    group.min = {x_min, y - 0.25 * spacing, 0.0};
+    group.max = {x_max, y + 0.25 * spacing, 0.0};
+    description.groups.push_back(group);
+    ProbeSpec probe;
+    probe.name = group.name;
+    probe.group = group.name;
+    probe.fields = {field};
+    description.probes.push_back(probe);
+    heights.push_back(y);
+  }
+  return heights;
+}
+
 double relative_error(double value, double reference) {
   return std::abs(value / reference - 1.0);
 }

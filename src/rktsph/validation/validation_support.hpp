@@ -46,6 +46,17 @@ std::filesystem::path run_for_validation(
     const ValidationContext& context, const CaseDescription& description, const std::string& label,
     const std::function<void(const Simulation&)>& inspect = {});
 
+/// A numeric parameter of a material block of the case; RunError if it is absent.
+double material_parameter(const CaseDescription& description, const std::string& material,
+                          const std::string& key);
+
+/// Adds, for each of `rows` lattice rows at y0, y0 + spacing, ..., a group "<prefix><row>" (a box
+/// from x_min to x_max, +- spacing/4 in y) and a probe of the mean of `field` over it, named like
+/// the group. Returns the heights of the rows.
+std::vector<double> add_row_probes(CaseDescription& description, const std::string& prefix,
+                                   double x_min, double x_max, double y0, double spacing, int rows,
+                                   const std::string& field);
+
 /// |a/b - 1|
 double relative_error(double value, double reference);
 

@@ -47,11 +47,7 @@ struct BarSetup {
 };
 
 double material_value(const CaseDescription& description, const std::string& key) {
-  const ParameterBlock& block = description.materials.at("soil");
-  const auto it = block.values.find(key);
-  if (it == block.values.end())
-    throw RunError("case " + description.name + ": material 'soil' has no '" + key + "'");
-  return it->second.value;
+  return material_parameter(description, "soil", key);
 }
 
 /// The condition of the loaded end (group xmax) of the case file.

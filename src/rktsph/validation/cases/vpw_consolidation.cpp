@@ -58,11 +58,7 @@ struct ConsolidationSetup {
 };
 
 double material_value(const CaseDescription& description, const std::string& key) {
-  const ParameterBlock& block = description.materials.at("soil");
-  const auto it = block.values.find(key);
-  if (it == block.values.end())
-    throw RunError("case " + description.name + ": material 'soil' has no '" + key + "'");
-  return it->second.value;
+  return material_parameter(description, "soil", key);
 }
 
 /// The traction on the top (group ymax): a ramp (or a constant) to -q.
@@ -115,22 +111,9 @@ ConsolidationSetup read_setup(const CaseDescription& description) {
 std::vector<double> add_column_probes(CaseDescription& description,
                                       const ConsolidationSetup& setup) {
   const int rows = static_cast<int>(std::lround(setup.height / setup.spacing)) + 1;
-  std::vector<double> heights;
-  for (int row = 0; row < rows; ++row) {
-    const double y = setup.base + row * setup.spacing;
-    GroupSpec group;
-    group.name = fmt::format("vpw_row_{}", row);
-    group.kind = GroupSpec::Kind::Box;
-    group.min = {setup.x_min, y - 0.25 * setup.spacing, 0.0};
-    group.max = {setup.x_max, y + 0.25 * setup.spacing, 0.0};
-    description.groups.push_back(group);
-    ProbeSpec probe;
-    probe.name = group.name;
-    probe.group = group.name;
-    probe.fields = {"pore_pressure"};
-    description.probes.push_back(probe);
-    heights.push_back(y);
-  }
+  const std::vector<double> heights =
+      add_row_probes(description, "vpw_row_", setup.x_min, setup.x_max, setup.base, setup.spacing,
+                     rows, "pore_pressure");
   ProbeSpec top;
   top.name = "vpw_top";
   top.group = "ymax";

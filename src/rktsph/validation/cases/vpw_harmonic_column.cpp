@@ -61,11 +61,7 @@ struct HarmonicSetup {
 };
 
 double material_value(const CaseDescription& description, const std::string& key) {
-  const ParameterBlock& block = description.materials.at("soil");
-  const auto it = block.values.find(key);
-  if (it == block.values.end())
-    throw RunError("case " + description.name + ": material 'soil' has no '" + key + "'");
-  return it->second.value;
+  return material_parameter(description, "soil", key);
 }
 
 /// The harmonic traction y on the top (group ymax).
@@ -144,22 +140,6 @@ TimeFunction ramped(const TimeFunction& harmonic, double end) {
 }
 
 /// One probe per lattice row: the mean pore pressure of the row.
-void add_row_probes(CaseDescription& description, const HarmonicSetup& setup) {
-  for (int row = 0; row < setup.rows(); ++row) {
-    const double y = setup.base + row * setup.spacing;
-    GroupSpec group;
-    group.name = fmt::format("vpw_row_{}", row);
-    group.kind = GroupSpec::Kind::Box;
-    group.min = {setup.x_min, y - 0.25 * setup.spacing, 0.0};
-    group.max = {setup.x_max, y + 0.25 * setup.spacing, 0.0};
-    description.groups.push_back(group);
-    ProbeSpec probe;
-    probe.name = group.name;
-    probe.group = group.name;
-    probe.fields = {"pore_pressure"};
-    description.probes.push_back(probe);
-  }
-}
 
 /// Amplitude sqrt(a^2 + b^2) of the least-squares fit a cos(wt) + b sin(wt) + c over [t0, t1].
 double fitted_amplitude(const ProbeTable& probes, const std::string& column, double omega,
@@ -208,7 +188,8 @@ double amplitude_error(const ValidationContext& context, const HarmonicSetup& se
   description.time.end = end;
   description.output.probe_interval = 0.0;
   description.output.interval = setup.period * 5.0;
-  add_row_probes(description, setup);
+  add_row_probes(description, "vpw_row_", setup.x_min, setup.x_max, setup.base, setup.spacing,
+                 setup.rows(), "pore_pressure");
   const ProbeTable probes =
       ProbeTable::read(run_for_validation(context, description, label) / "probes.csv");
   const references::HarmonicColumnSolution reference(reference_column(setup, conductivity));
