@@ -21,7 +21,6 @@ const std::map<std::string, std::string>& known_open_problems() {
        "open problem: a pore-pressure checkerboard under the footing edge (7.6 % of max p_w) "
        "that no gradient operator sees at h = 0.75 dx; the hourglass filter no longer acts on "
        "p_w because that drained undrained soil. See docs/theory.md §6.5."},
-      {"vpw-localization", "not implemented yet (issue V3)"},
       {"slope-elastic",
        "open problem: residual_velocity_ratio 0.045 (target 1e-3): odd-even velocity patterns "
        "that build no stress at the stress points creep under the steady corner forces; mass "

@@ -390,4 +390,11 @@ BandMeasurement measure_band(std::span<const double> x, std::span<const double> 
   return result;
 }
 
+double distance_to_band(const BandLine& line, double x, double y) {
+  // The band direction is the reference (vertical) axis turned by direction_deg counter-clockwise.
+  const double turn = line.direction_deg * std::numbers::pi / 180.0;
+  const double along_x = -std::sin(turn), along_y = std::cos(turn);
+  return std::abs((x - line.centre_x) * along_y - (y - line.centre_y) * along_x);
+}
+
 }  // namespace rktsph

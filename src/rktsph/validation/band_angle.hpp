@@ -74,4 +74,7 @@ struct BandMeasurement {
 BandMeasurement measure_band(std::span<const double> x, std::span<const double> y,
                              std::span<const double> value, const BandAngleOptions& options = {});
 
+/// Distance [m] from the point (x, y) to the centre line of `line`.
+double distance_to_band(const BandLine& line, double x, double y);
+
 }  // namespace rktsph

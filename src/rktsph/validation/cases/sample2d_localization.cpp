@@ -79,13 +79,6 @@ double band_onset(const ProbeTable& probes, double strain_level) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-double distance_to_line(const BandLine& line, double x, double y) {
-  // The band direction is the vertical axis turned by direction_deg counter-clockwise.
-  const double turn = line.direction_deg * std::numbers::pi / 180.0;
-  const double along_x = -std::sin(turn), along_y = std::cos(turn);
-  return std::abs((x - line.centre_x) * along_y - (y - line.centre_y) * along_x);
-}
-
 }  // namespace
 
 std::vector<CheckResult> validate_sample2d_localization(const ValidationContext& context) {
@@ -141,7 +134,7 @@ std::vector<CheckResult> validate_sample2d_localization(const ValidationContext&
       check_within("band_onset_time", onset, expected_onset, 0.15 * expected_onset, "s"),
       // The weak-zone half-diagonal plus one spacing (the ridge is located to about a spacing).
       check_at_most("band_distance_to_weak_zone",
-                    distance_to_line(band->primary, kWeakZoneCentreX, kWeakZoneCentreY), 0.0,
+                    distance_to_band(band->primary, kWeakZoneCentreX, kWeakZoneCentreY), 0.0,
                     kWeakZoneHalfDiagonal + spacing, "m"),
   };
 }
