@@ -10,32 +10,14 @@
 #include <functional>
 #include <numbers>
 
+#include "../support/lattices.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 
 namespace rktsph {
 namespace {
 
-NodeSets bar_lattice(double length, double dx) {
-  GeometrySpec geometry;
-  geometry.spacing = dx;
-  ShapeSpec shape;
-  shape.kind = ShapeSpec::Kind::Segment;
-  shape.vertices = {{0.0, 0.0, 0.0}, {length, 0.0, 0.0}};
-  shape.material = "soil";
-  geometry.shapes.push_back(shape);
-  return build_node_sets(geometry, 1, {"soil"});
-}
-
-NodeSets rectangle_lattice(double width, double height, double dx) {
-  GeometrySpec geometry;
-  geometry.spacing = dx;
-  ShapeSpec shape;
-  shape.kind = ShapeSpec::Kind::Rectangle;
-  shape.vertices = {{0.0, 0.0, 0.0}, {width, height, 0.0}};
-  shape.material = "soil";
-  geometry.shapes.push_back(shape);
-  return build_node_sets(geometry, 2, {"soil"});
-}
+using test::bar_lattice;
+using test::rectangle_lattice;
 
 OperatorOptions options_for(int dimension, double smoothing_length,
                             std::vector<MirrorPlane> mirrors = {}) {

@@ -8,10 +8,14 @@
 #include <cmath>
 #include <random>
 
+#include "../support/lattices.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 
 namespace rktsph {
 namespace {
+
+using test::bar_lattice;
+using test::rectangle_lattice;
 
 // Linear field f = c0 + k . x.
 struct LinearField {
@@ -28,28 +32,6 @@ FieldArray sample(const PointCloud& points, const std::vector<LinearField>& fiel
     for (std::size_t i = 0; i < points.size(); ++i)
       values(static_cast<int>(f), i) = fields[f](points.point(i));
   return values;
-}
-
-NodeSets rectangle_lattice(double width, double height, double dx) {
-  GeometrySpec geometry;
-  geometry.spacing = dx;
-  ShapeSpec shape;
-  shape.kind = ShapeSpec::Kind::Rectangle;
-  shape.vertices = {{0.0, 0.0, 0.0}, {width, height, 0.0}};
-  shape.material = "soil";
-  geometry.shapes.push_back(shape);
-  return build_node_sets(geometry, 2, {"soil"});
-}
-
-NodeSets bar_lattice(double length, double dx) {
-  GeometrySpec geometry;
-  geometry.spacing = dx;
-  ShapeSpec shape;
-  shape.kind = ShapeSpec::Kind::Segment;
-  shape.vertices = {{0.0, 0.0, 0.0}, {length, 0.0, 0.0}};
-  shape.material = "soil";
-  geometry.shapes.push_back(shape);
-  return build_node_sets(geometry, 1, {"soil"});
 }
 
 OperatorOptions options_for(int dimension, double h, int order = 0) {

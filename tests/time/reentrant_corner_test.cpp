@@ -8,11 +8,14 @@
 
 #include <Eigen/Dense>
 
+#include "../support/step_matrix.hpp"
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
 namespace rktsph {
 namespace {
+
+using test::spectral_radius;
 
 // A 12 x 8 block with a 6 x 5 notch cut out of its top right: the toe (6, 3) is re-entrant; the
 // crest (6, 8) is a free convex corner; rollers on the sides, fixed base.
@@ -34,27 +37,6 @@ numerics: {{courant: {}, hourglass: {{enabled: false}}}}
 time: {{end: 1.0}}
 )",
                      courant);
-}
-
-// Spectral radius of x_{n+1} = M x_n, sigma_zz left out (passive); long double eigenvalues for the
-// reason given in rk_taylor_step_test.cpp.
-double spectral_radius(Simulation& simulation) {
-  State& state = simulation.state();
-  const int fields = state.fields.field_count() - 1;
-  const std::size_t n = state.fields.point_count();
-  const auto size = static_cast<Eigen::Index>(fields * n);
-  Eigen::MatrixXd matrix(size, size);
-  for (Eigen::Index column = 0; column < size; ++column) {
-    std::fill(state.fields.data().begin(), state.fields.data().end(), 0.0);
-    state.fields.data()[static_cast<std::size_t>(column)] = 1.0;
-    state.time = 0.0;
-    simulation.step().advance(state, simulation.time_step());
-    for (Eigen::Index row = 0; row < size; ++row)
-      matrix(row, column) = state.fields.data()[static_cast<std::size_t>(row)];
-  }
-  using LongMatrix = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
-  const Eigen::EigenSolver<LongMatrix> solver(matrix.cast<long double>(), false);
-  return static_cast<double>(solver.eigenvalues().cwiseAbs().maxCoeff());
 }
 
 TEST(ReentrantCornerSlow, CutLatticeIsNeutrallyStable) {

@@ -12,11 +12,14 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "../support/step_matrix.hpp"
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
 namespace rktsph {
 namespace {
+
+using test::spectral_radius;
 
 const char* kBar = R"(
 name: bar
@@ -72,7 +75,8 @@ TEST(RkTaylorStep, DisplacementIsTheTimeIntegralOfTheVelocity) {
   // integration of a constant is exact); the free end is still at rest before L/c.
   Simulation simulation(read_case_text(kBar, "bar.yaml"));
   const double dt = simulation.time_step();
-  for (int s = 0; s < 15; ++s) simulation.step().advance(simulation.state(), dt);
+  for (int s = 0; s < 15; ++s)
+    simulation.step().advance(simulation.state(), dt);
   const State& state = simulation.state();
   const std::size_t driven = simulation.nodes().sph_nodes.size() - 1;
   EXPECT_NEAR(state.displacement(0, driven), -0.1 * state.time, 1e-15);
@@ -145,31 +149,6 @@ numerics: {{courant: {}, hourglass: {{enabled: {}}}}}
 time: {{end: 1.0}}
 )",
                      courant, filter ? "true" : "false");
-}
-
-// Spectral radius of the one-step map x_{n+1} = M x_n, built column by column. sigma_zz is left
-// out: it is passive (nothing depends on it), so its block only adds a cluster of eigenvalues at
-// exactly 1. The eigenvalues are computed in long double: the static states form a nearly
-// defective cluster at 1 whose computed spread is O(sqrt(epsilon)), ~1e-8 in double, which would
-// hide the 1e-9 criterion; in long double it is ~3e-10.
-double spectral_radius(Simulation& simulation) {
-  State& state = simulation.state();
-  RkTaylorStep& step = simulation.step();
-  const int fields = state.fields.field_count() - 1;
-  const std::size_t n = state.fields.point_count();
-  const auto size = static_cast<Eigen::Index>(fields * n);
-  Eigen::MatrixXd matrix(size, size);
-  for (Eigen::Index column = 0; column < size; ++column) {
-    std::fill(state.fields.data().begin(), state.fields.data().end(), 0.0);
-    state.fields.data()[static_cast<std::size_t>(column)] = 1.0;
-    state.time = 0.0;
-    step.advance(state, simulation.time_step());
-    for (Eigen::Index row = 0; row < size; ++row)
-      matrix(row, column) = state.fields.data()[static_cast<std::size_t>(row)];
-  }
-  using LongMatrix = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
-  const Eigen::EigenSolver<LongMatrix> solver(matrix.cast<long double>(), false);
-  return static_cast<double>(solver.eigenvalues().cwiseAbs().maxCoeff());
 }
 
 TEST(RkTaylorStepSlow, SpectralRadiusOfTheFullStepWithEveryBoundaryTypeIsAtMostOne) {

@@ -28,16 +28,6 @@ namespace rktsph {
 
 namespace {
 
-double material_value(const CaseDescription& description, const std::string& material,
-                      const std::string& key) {
-  const ParameterBlock& block = description.materials.at(material);
-  const auto it = block.values.find(key);
-  if (it == block.values.end())
-    throw RunError("case " + description.name + ": material '" + material + "' has no '" + key +
-                   "'");
-  return it->second.value;
-}
-
 constexpr int kPulseSamples = 4000;
 
 /// The sin^4 pulse built from the case's sin^2 harmonic (offset = amplitude = V0/2).
@@ -116,9 +106,9 @@ std::vector<double> refinement_errors(const ValidationContext& context, const st
     const bool plane = description.dimension == 2;
     if (plane) shape.vertices.at(1)[1] = shape.vertices.at(0)[1] + 4.0 * dx;
     const std::string material = shape.material;
-    const double density = material_value(description, material, "density");
-    const double young = material_value(description, material, "young_modulus");
-    const double nu = material_value(description, material, "poisson_ratio");
+    const double density = material_parameter(description, material, "density");
+    const double young = material_parameter(description, material, "young_modulus");
+    const double nu = material_parameter(description, material, "poisson_ratio");
     // 1D: the uniaxial bar (E). 2D: no lateral strain between the rollers, so the P-wave
     // modulus M = E (1 - nu) / ((1 + nu) (1 - 2 nu)).
     const double modulus = plane ? young * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu)) : young;

@@ -45,11 +45,6 @@ constexpr double kQuickSpacing = 0.05;
 constexpr double kOnsetStrainFraction = 0.1;
 constexpr double kOnsetConcentration = 5.0;
 
-double material_value(const CaseDescription& description, const std::string& material,
-                      const std::string& key) {
-  return description.materials.at(material).values.at(key).value;
-}
-
 /// The imposed top velocity v_y(t) (the ymax condition of the case).
 const TimeFunction& top_velocity(const CaseDescription& description) {
   for (const BoundaryConditionSpec& condition : description.boundary_conditions)
@@ -105,15 +100,15 @@ std::vector<CheckResult> validate_sample2d_localization(const ValidationContext&
 
   // First yield of the intact, unconfined plane-strain sample (validation.md §4.4): axial stress
   // Y/sqrt(1 - nu + nu^2), axial strain that times (1 - nu^2)/E.
-  const double young = material_value(description, "soil", "young_modulus");
-  const double poisson = material_value(description, "soil", "poisson_ratio");
-  const double yield = material_value(description, "soil", "yield_stress");
+  const double young = material_parameter(description, "soil", "young_modulus");
+  const double poisson = material_parameter(description, "soil", "poisson_ratio");
+  const double yield = material_parameter(description, "soil", "yield_stress");
   const double first_yield_strain = references::plane_strain_first_yield_stress(yield, poisson) *
                                     (1.0 - poisson * poisson) / young;
   // validation.md §4.4: onset ~ eps_y H / V + ramp / 2 + H / c_p. The first two terms are the
   // quasi-static time the top needs to impose the first-yield strain; the last is the transit of
   // the compression from the loaded top to the weak zone at the bottom.
-  const double density = material_value(description, "soil", "density");
+  const double density = material_parameter(description, "soil", "density");
   const double p_wave_speed =
       std::sqrt(young * (1.0 - poisson) / ((1.0 + poisson) * (1.0 - 2.0 * poisson) * density));
   const double expected_onset =
