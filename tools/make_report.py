@@ -88,6 +88,8 @@ def draw_figure(figure, path):
     axes.set_title(figure.get("title", ""))
     axes.set_xlabel(figure.get("x_label", ""))
     axes.set_ylabel(figure.get("y_label", ""))
+    axes.set_xscale(figure.get("x_scale", "linear"))
+    axes.set_yscale(figure.get("y_scale", "linear"))
     axes.grid(True, alpha=0.3)
     if figure["series"]:
         axes.legend(loc="best", fontsize="small")

@@ -83,6 +83,22 @@ TEST(ValidationReport, RejectsUnknownStylesAndRaggedSeries) {
   }
 }
 
+TEST(ValidationReport, AcceptsLinearAndLogAxesOnly) {
+  ValidationReport report;
+  Figure logarithmic = one_curve_figure("loglog");
+  logarithmic.x_scale = "log";
+  logarithmic.y_scale = "log";
+  EXPECT_NO_THROW(report.add_figure(logarithmic));
+  for (const char* scale : {"", "symlog", "Log"}) {
+    Figure bad_x = one_curve_figure(std::string("bad_x_") + (*scale ? scale : "empty"));
+    bad_x.x_scale = scale;
+    EXPECT_THROW(report.add_figure(bad_x), std::invalid_argument) << scale;
+    Figure bad_y = one_curve_figure(std::string("bad_y_") + (*scale ? scale : "empty"));
+    bad_y.y_scale = scale;
+    EXPECT_THROW(report.add_figure(bad_y), std::invalid_argument) << scale;
+  }
+}
+
 TEST(ValidationReport, RejectsPicturesWithoutRunFieldOrWithABadComponent) {
   ValidationReport report;
   FieldPicture no_field = picture_named("a");
@@ -201,6 +217,8 @@ TEST(RunValidation, WritesReportJsonWithChecksFiguresAndPictures) {
   EXPECT_EQ(figure["title"].as<std::string>(), "Made-up curve");
   EXPECT_EQ(figure["x_label"].as<std::string>(), "time [s]");
   EXPECT_EQ(figure["y_label"].as<std::string>(), "value [1]");
+  EXPECT_EQ(figure["x_scale"].as<std::string>(), "linear");
+  EXPECT_EQ(figure["y_scale"].as<std::string>(), "linear");
   ASSERT_EQ(figure["series"].size(), 2u);
   EXPECT_EQ(figure["series"][0]["label"].as<std::string>(), "measured");
   EXPECT_EQ(figure["series"][0]["style"].as<std::string>(), "points");

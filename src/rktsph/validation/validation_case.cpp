@@ -59,6 +59,8 @@ JsonValue figure_json(const Figure& figure) {
   item.set("title", figure.title);
   item.set("x_label", figure.x_label);
   item.set("y_label", figure.y_label);
+  item.set("x_scale", figure.x_scale);
+  item.set("y_scale", figure.y_scale);
   item.set("series", std::move(series));
   return item;
 }
@@ -100,6 +102,10 @@ void ValidationReport::claim_name(const std::string& name) {
 }
 
 void ValidationReport::add_figure(Figure figure) {
+  for (const std::string* scale : {&figure.x_scale, &figure.y_scale})
+    if (*scale != "linear" && *scale != "log")
+      throw std::invalid_argument("figure '" + figure.name + "' has axis scale '" + *scale +
+                                  "' (expected linear or log)");
   for (const Series& curve : figure.series) {
     if (curve.style != "line" && curve.style != "dashed" && curve.style != "points")
       throw std::invalid_argument("figure '" + figure.name + "': series '" + curve.label +

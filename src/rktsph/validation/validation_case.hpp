@@ -59,6 +59,8 @@ struct Figure {
   std::string name;  ///< file stem: letters, digits, '_', '-', '.'; unique within the case
   std::string title, x_label, y_label;
   std::vector<Series> series;
+  /// Axis scales, "linear" or "log" (a log axis leaves out values <= 0).
+  std::string x_scale = "linear", y_scale = "linear";
 };
 
 /// A picture of one output field of a run, drawn by tools/plot_field.py (as `rktsph plot`) to
@@ -76,7 +78,8 @@ struct FieldPicture {
 
 /// Where a case puts its figures, pictures and description while it runs (the sink of
 /// ValidationContext::report). Throws std::invalid_argument for a malformed figure or picture
-/// (bad or repeated name, unknown style, x and y of different lengths): programming errors.
+/// (bad or repeated name, unknown style or axis scale, x and y of different lengths): programming
+/// errors.
 class ValidationReport {
  public:
   /// A paragraph saying what the case is; replaces the registry's one-line summary.

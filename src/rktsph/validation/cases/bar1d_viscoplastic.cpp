@@ -12,8 +12,11 @@
 //   relative L1 over the run. history_l1_error_stiff repeats it with gamma = 50 1/s, whose
 //   relaxation time Y0/(E gamma) = 20 us is 1/45 of the SPH step, so the source is integrated by
 //   RK sub-steps.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -120,8 +123,19 @@ double extrapolate_to(const ProbeTable& probes, const std::string& column, doubl
   return (sum_v - slope * sum_t) / count;
 }
 
+/// The front-decay run: its error and, for the report, what it measured.
+struct FrontDecay {
+  double worst = 0.0;  ///< largest relative error of the overstress
+  BarSetup setup;
+  double front_stress = 0.0;            ///< sigma0 of the sudden load [Pa]
+  std::vector<double> distance_ratios;  ///< probe distances in decay lengths
+  std::vector<double> arrivals;         ///< d/c [s]
+  std::vector<double> fronts;           ///< |sigma_f| read at d/c [Pa]
+  ProbeTable probes;
+};
+
 /// Largest relative error of the front overstress at 0.5, 1 and 2 decay lengths.
-double front_decay_error(const ValidationContext& context) {
+FrontDecay front_decay_error(const ValidationContext& context) {
   CaseDescription description = load_bundled_case(context, kFolder);
   const BarSetup setup = read_setup(description);
   if (setup.exponent != 1.0) throw RunError("front_decay_error: the decay law needs N = 1");
@@ -159,8 +173,13 @@ double front_decay_error(const ValidationContext& context) {
   description.time.end = (distances.back() + (window_end + 2.0) * spacing) / c;
   description.output.interval = 0.0;
   description.output.probe_interval = 0.0;
-  const ProbeTable probes =
+  FrontDecay result;
+  result.setup = setup;
+  result.front_stress = front_stress;
+  result.distance_ratios = distance_ratios;
+  result.probes =
       ProbeTable::read(run_for_validation(context, description, "front-decay") / "probes.csv");
+  const ProbeTable& probes = result.probes;
   double worst = 0.0;
   for (std::size_t k = 0; k < distances.size(); ++k) {
     const double arrival = distances[k] / c;
@@ -171,8 +190,11 @@ double front_decay_error(const ValidationContext& context) {
         front_stress, setup.yield_stress, setup.young_modulus, setup.fluidity, arrival));
     worst =
         std::max(worst, std::abs((front - setup.yield_stress) / (law - setup.yield_stress) - 1.0));
+    result.arrivals.push_back(arrival);
+    result.fronts.push_back(front);
   }
-  return worst;
+  result.worst = worst;
+  return result;
 }
 
 /// Linear interpolation of the reference history at `time` (its samples are equally spaced).
@@ -187,17 +209,33 @@ double interpolate(const std::vector<references::ViscoplasticBarSample>& history
   return before->values.stress + weight * (after->values.stress - before->values.stress);
 }
 
+/// A fixed-end history run: its error and, for the report, the two histories.
+struct HistoryComparison {
+  double error = 0.0;
+  double fluidity = 0.0;
+  double transit = 0.0;  ///< L/c [s]
+  ProbeTable probes;
+  std::vector<references::ViscoplasticBarSample> reference;
+  std::filesystem::path run_directory;
+};
+
 /// Relative L1 error of the fixed-end stress history: integral |sigma - sigma_ref| dt over
 /// integral |sigma_ref| dt (trapezoidal on the SPH samples; the reference is on a finer grid).
 /// A positive `fluidity` replaces the case's.
-double history_l1_error(const ValidationContext& context, double fluidity,
-                        const std::string& label) {
+/// `field_output`: fields every L/4c (for the report), else only the first and last.
+HistoryComparison history_l1_error(const ValidationContext& context, double fluidity,
+                                   const std::string& label, bool field_output = false) {
   CaseDescription description = load_bundled_case(context, kFolder, {{"output.interval", "0"}});
   if (fluidity > 0.0) description.materials.at("soil").values.at("fluidity").value = fluidity;
   const BarSetup setup = read_setup(description);
+  if (field_output) description.output.interval = 0.25 * setup.length / setup.wave_speed();
   const double end = description.time.end;
-  const ProbeTable probes =
-      ProbeTable::read(run_for_validation(context, description, label) / "probes.csv");
+  HistoryComparison result;
+  result.fluidity = setup.fluidity;
+  result.transit = setup.length / setup.wave_speed();
+  result.run_directory = run_for_validation(context, description, label);
+  result.probes = ProbeTable::read(result.run_directory / "probes.csv");
+  const ProbeTable& probes = result.probes;
   // 400 cells (dx = decay length / 18 at gamma = 1): against 6400 cells this history differs by
   // 8e-6 (gamma = 1) and 2e-5 (gamma = 50) in the same relative L1 norm, far below the tolerance.
   const auto reference =
@@ -212,15 +250,103 @@ double history_l1_error(const ValidationContext& context, double fluidity,
     error += 0.5 * step * (std::abs(stress[i - 1] - before) + std::abs(stress[i] - after));
     norm += 0.5 * step * (std::abs(before) + std::abs(after));
   }
-  return error / norm;
+  result.error = error / norm;
+  result.reference = reference;
+  return result;
+}
+
+Series kilopascal(std::string label, std::vector<double> time, std::vector<double> stress,
+                  double sign, std::string style) {
+  Series curve{std::move(label), std::move(time), std::move(stress), std::move(style)};
+  for (double& t : curve.x)
+    t *= 1e3;
+  for (double& y : curve.y)
+    y *= sign * 1e-3;
+  return curve;
+}
+
+/// The fixed-end stress of one history run on the same axes as the characteristics solution.
+Figure history_figure(const std::string& name, const HistoryComparison& run) {
+  std::vector<double> time, stress;
+  for (const references::ViscoplasticBarSample& sample : run.reference) {
+    time.push_back(sample.time);
+    stress.push_back(sample.values.stress);
+  }
+  return {
+      name,
+      fmt::format("Stress at the fixed end x = 0, gamma = {:g} 1/s (relative L1 error {:.2g})",
+                  run.fluidity, run.error),
+      "time [ms]",
+      "compressive stress -sigma_xx at x = 0 [kPa]",
+      {kilopascal("SPH", run.probes.time(), run.probes.column("fixed_end.stress_xx"), -1.0, "line"),
+       kilopascal("characteristics (400 cells)", std::move(time), std::move(stress), -1.0,
+                  "dashed")}};
+}
+
+void report_bar(ValidationReport& report, const FrontDecay& front, const HistoryComparison& history,
+                const HistoryComparison& stiff) {
+  const BarSetup& setup = front.setup;
+  report.describe(fmt::format(
+      "Thesis 4.3: a 1D Perzyna Von Mises bar (E = {:g} MPa, rho = {:g} kg/m3, Y0 = {:g} kPa, "
+      "gamma = {:g} 1/s, N = 1, no hardening), fixed at x = 0 and pushed at x = L. (1) Front "
+      "decay: a sudden velocity sends a front of amplitude 2 Y0 into the bar at rest; its "
+      "overstress must decay as exp(-E gamma t / 2 Y0) (decay length l_d = {:.3f} m). The front "
+      "stress is read at 0.5, 1 and 2 decay lengths by extrapolating each probe history back "
+      "to the arrival time d/c. (2) Histories: the case as written (velocity ramped to Z|V0| = "
+      "0.6 Y0, whose reflection at the fixed end would reach 1.2 Y0 and relaxes towards Y0 by "
+      "viscoplastic flow), compared with the project's method-of-characteristics solution at "
+      "gamma = 1 and at gamma = 50 1/s (relaxation time far below the SPH step).",
+      setup.young_modulus * 1e-6, setup.density, setup.yield_stress * 1e-3, setup.fluidity,
+      setup.decay_length()));
+  Figure decay{"front_decay",
+               "Front of amplitude 2 Y0 entering the bar at rest",
+               "time [ms]",
+               "compressive stress -sigma_xx [kPa]",
+               {}};
+  std::vector<double> arrivals, fronts;
+  for (std::size_t k = 0; k < front.arrivals.size(); ++k) {
+    decay.series.push_back(kilopascal(
+        fmt::format("SPH probe at d = {:g} l_d", front.distance_ratios[k]), front.probes.time(),
+        front.probes.column("front" + std::to_string(k) + ".stress_xx"), -1.0, "line"));
+    arrivals.push_back(front.arrivals[k]);
+    fronts.push_back(front.fronts[k]);
+  }
+  decay.series.push_back(
+      kilopascal("SPH front stress read at d/c", arrivals, fronts, 1.0, "points"));
+  const double end = front.probes.time().back();
+  const Series law = sample_curve("", 0.0, end, 400, [&](double t) {
+    return std::abs(references::viscoplastic_front_stress(front.front_stress, setup.yield_stress,
+                                                          setup.young_modulus, setup.fluidity, t));
+  });
+  decay.series.push_back(kilopascal("decay law |sigma_f| = Y0 + (2 Y0 - Y0) exp(-E gamma t / 2 Y0)",
+                                    law.x, law.y, 1.0, "dashed"));
+  report.add_figure(std::move(decay));
+  report.add_figure(history_figure("fixed_end_stress", history));
+  report.add_figure(history_figure("fixed_end_stress_stiff", stiff));
+  // 1.5 L/c: the wave reflected at the fixed end (t = L/c) is half-way back to the loaded end.
+  const double half_way = 1.5 * history.transit;
+  report.add_picture({"stress_reflected", history.run_directory.string(), "stress", 0, half_way,
+                      0.0,
+                      "sigma_xx along the bar at t = 1.5 L/c (gamma = 1 1/s): the incoming "
+                      "wave (-0.6 Y0) in the right half, the reflected wave, relaxed towards -Y0 "
+                      "by viscoplastic flow, in the left half."});
+  report.add_picture({"eps_vp_reflected", history.run_directory.string(), "eps_vp", -1, half_way,
+                      0.0,
+                      "Equivalent viscoplastic strain at t = 1.5 L/c: the reflected front "
+                      "leaves plastic strain behind it, largest at the fixed end x = 0 where the "
+                      "overstress was largest."});
 }
 
 }  // namespace
 
 std::vector<CheckResult> validate_bar1d_viscoplastic(const ValidationContext& context) {
-  const double front = front_decay_error(context);
-  const double history = history_l1_error(context, 0.0, "history");
-  const double stiff = history_l1_error(context, 50.0, "history-stiff");
+  const FrontDecay decay = front_decay_error(context);
+  // Field output every L/4c when reporting, for the pictures of the reflected wave.
+  const HistoryComparison history_run =
+      history_l1_error(context, 0.0, "history", context.report != nullptr);
+  const HistoryComparison stiff_run = history_l1_error(context, 50.0, "history-stiff");
+  if (context.report) report_bar(*context.report, decay, history_run, stiff_run);
+  const double front = decay.worst, history = history_run.error, stiff = stiff_run.error;
   return {
       check_at_most("front_decay_error", front, 0.0, 0.05, "fraction"),
       check_at_most("history_l1_error", history, 0.0, 0.05, "fraction"),

@@ -3,9 +3,13 @@
 // vertical stress is the overburden rho g depth; where lateral strain is prevented the horizontal
 // stress is K0 = nu/(1 - nu) of it (gravity_column reference, validation.md §4.5.1); a damped
 // elastic body must come to rest.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "rktsph/validation/references/gravity_column.hpp"
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
@@ -47,6 +51,86 @@ StaticErrors measure_static_state(const Simulation& simulation) {
   return errors;
 }
 
+/// For the report: the static state at the end where the checks look at it.
+struct StaticProfiles {
+  std::vector<double> far_depth, far_stress;  // far field: depth [m], -sigma_yy [kPa]
+  std::vector<double> base_x, base_ratio;     // base nodes checked: x, sigma_xx/sigma_yy
+  std::vector<double> toe_x, toe_ratio;       // base nodes within H of the face
+};
+
+StaticProfiles static_profiles(const Simulation& simulation) {
+  const NodeSets& nodes = simulation.nodes();
+  const FieldArray& fields = simulation.state().fields;
+  const int xx = simulation.model().stress_field(0, 0), yy = simulation.model().stress_field(1, 1);
+  const double dx = nodes.spacing;
+  StaticProfiles profiles;
+  for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i) {
+    const double x = nodes.sph_nodes.position[0][i], y = nodes.sph_nodes.position[1][i];
+    if (x <= kFace - 2.0 * kCutHeight) {  // the far field of the check, all depths
+      profiles.far_depth.push_back(kTop - y);
+      profiles.far_stress.push_back(-1e-3 * fields(yy, i));
+    }
+    if (std::abs(y) < 1e-9 * dx) {
+      const bool checked = x <= kFace - kCutHeight;
+      (checked ? profiles.base_x : profiles.toe_x).push_back(x);
+      (checked ? profiles.base_ratio : profiles.toe_ratio).push_back(fields(xx, i) / fields(yy, i));
+    }
+  }
+  return profiles;
+}
+
+void report_slope(ValidationReport& report, const std::filesystem::path& directory,
+                  const ProbeTable& probes, const StaticProfiles& profiles, double peak) {
+  report.describe(
+      "Thesis 4.5.1: an elastic block (E = 100 MPa, nu = 0.3, rho = 2000 kg/m3) 30 m long and "
+      "10 m high with a vertical free face at x = 30 m, on a rigid rough base and a roller "
+      "symmetry plane at x = 0, under gravity ramped over 0.5 s with mass damping 20/s, run to "
+      "2 s. Far from the face (x <= 10 m) the vertical stress must be the overburden rho g "
+      "depth; on the fixed base, where lateral strain is prevented, sigma_xx / sigma_yy must be "
+      "K0 = nu / (1 - nu) (checked for x <= 20 m, away from the toe); the damped body must "
+      "come to rest (largest velocity at the end below 1e-3 of its peak).");
+  const double end = probes.time().back();
+  report.add_figure({"far_field_vertical_stress",
+                     "Vertical stress far from the face (x <= 10 m) at the end",
+                     "depth below the top [m]",
+                     "compressive vertical stress -sigma_yy [kPa]",
+                     {{"SPH nodes", profiles.far_depth, profiles.far_stress, "points"},
+                      sample_curve("overburden rho g depth", 0.0, kTop, 50, [](double depth) {
+                        return -1e-3 *
+                               references::geostatic_vertical_stress(kDensity, kGravity, depth);
+                      })}});
+  // K0 from the confined-column reference: sigma_h / sigma_v at any depth.
+  const double k0 = references::geostatic_horizontal_stress(kDensity, kGravity, kTop, kPoisson) /
+                    references::geostatic_vertical_stress(kDensity, kGravity, kTop);
+  report.add_figure(
+      {"base_k0",
+       "Stress ratio on the rigid rough base at the end",
+       "x [m] (cut face at x = 30 m)",
+       "sigma_xx / sigma_yy [-]",
+       {{"SPH base nodes (checked, x <= 20 m)", profiles.base_x, profiles.base_ratio, "points"},
+        {"SPH base nodes within H of the face", profiles.toe_x, profiles.toe_ratio, "points"},
+        sample_curve(fmt::format("K0 = nu / (1 - nu) = {:.4f}", k0), 0.0, kFace, 2,
+                     [k0](double) { return k0; })}});
+  Figure velocity{"max_velocity",
+                  "Largest velocity component over the block",
+                  "time [s]",
+                  "max |v_x|, |v_y| over all nodes [m/s]",
+                  {{"SPH", probes.time(), {}, "line"},
+                   sample_curve("1e-3 of the peak (end-of-run limit)", 0.0, end, 2,
+                                [peak](double) { return 1e-3 * peak; })}};
+  const std::vector<double>& vx = probes.column("all.velocity_x");
+  const std::vector<double>& vy = probes.column("all.velocity_y");
+  for (std::size_t i = 0; i < vx.size(); ++i) {
+    const double speed = std::max(std::abs(vx[i]), std::abs(vy[i]));
+    velocity.series[0].y.push_back(speed > 0.0 ? speed : std::numeric_limits<double>::quiet_NaN());
+  }
+  velocity.y_scale = "log";
+  report.add_figure(std::move(velocity));
+  report.add_picture({"vertical_stress", directory.string(), "stress", 4, -1.0, 100.0,
+                      "sigma_yy at the end on the block deformed 100 times: the overburden "
+                      "grows with depth, the face bulges out and the crest settles."});
+}
+
 }  // namespace
 
 std::vector<CheckResult> validate_slope_elastic(const ValidationContext& context) {
@@ -55,9 +139,13 @@ std::vector<CheckResult> validate_slope_elastic(const ValidationContext& context
   if (context.quick) overrides.push_back({"geometry.spacing", "1.0"});
   const CaseDescription description = load_bundled_case(context, "slope-elastic", overrides);
   StaticErrors errors;
-  const auto directory = run_for_validation(
-      context, description, context.quick ? "dx1" : "dx05",
-      [&](const Simulation& simulation) { errors = measure_static_state(simulation); });
+  StaticProfiles profiles;
+  const auto directory = run_for_validation(context, description, context.quick ? "dx1" : "dx05",
+                                            [&](const Simulation& simulation) {
+                                              errors = measure_static_state(simulation);
+                                              if (context.report)
+                                                profiles = static_profiles(simulation);
+                                            });
   // Largest velocity component anywhere at the end against its peak during the run.
   const ProbeTable probes = ProbeTable::read(directory / "probes.csv");
   const auto& time = probes.time();
@@ -66,6 +154,7 @@ std::vector<CheckResult> validate_slope_elastic(const ValidationContext& context
                                probes.max_abs("all.velocity_y", 0.0, end));
   const double last = std::max(std::abs(probes.column("all.velocity_x").back()),
                                std::abs(probes.column("all.velocity_y").back()));
+  if (context.report) report_slope(*context.report, directory, probes, profiles, peak);
   // The same tolerances at both resolutions: the static checks are met with a wide margin at
   // dx = 1 m already (the prototype found the confined column exact to 1e-6 at h = 0.75 dx).
   return {

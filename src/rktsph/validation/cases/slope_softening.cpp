@@ -5,7 +5,10 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
@@ -20,16 +23,71 @@ constexpr double kCutHeight = 10.0;  // as in cases/slope-softening/case.yaml
 // threshold is reached only by a sliding mechanism.
 constexpr double kFailureDisplacement = 0.03 * kCutHeight;
 
-double failure_time(const ValidationContext& context, const std::vector<CaseOverride>& base,
-                    double hardening_modulus) {
+struct SofteningRun {
+  double failure_time = 0.0;  ///< first crossing of kFailureDisplacement, NaN if none
+  // For the report.
+  double hardening_modulus = 0.0;
+  std::filesystem::path directory;
+  ProbeTable probes;
+};
+
+SofteningRun failure_time(const ValidationContext& context, const std::vector<CaseOverride>& base,
+                          double hardening_modulus) {
   std::vector<CaseOverride> overrides = base;
   overrides.push_back(
       {"materials.soil.hardening_modulus", fmt::format("{:.9g}", hardening_modulus)});
   const CaseDescription description = load_bundled_case(context, "slope-softening", overrides);
-  const ProbeTable probes = ProbeTable::read(
-      run_for_validation(context, description, fmt::format("H{:.3g}", hardening_modulus)) /
-      "probes.csv");
-  return probes.first_crossing("crest.displacement_x", kFailureDisplacement);
+  SofteningRun run;
+  run.hardening_modulus = hardening_modulus;
+  run.directory =
+      run_for_validation(context, description, fmt::format("H{:.3g}", hardening_modulus));
+  run.probes = ProbeTable::read(run.directory / "probes.csv");
+  run.failure_time = run.probes.first_crossing("crest.displacement_x", kFailureDisplacement);
+  return run;
+}
+
+/// The crest histories that define failure, with the threshold and the failure times, and the
+/// eps_vp field of the strongly softening run.
+void report_softening(ValidationReport& report, const std::vector<const SofteningRun*>& runs,
+                      double end_time) {
+  report.describe(fmt::format(
+      "Thesis 4.5.3: the vertical cut of slope-viscoplastic with a peak strength a little above "
+      "critical (N0 = rho g H sqrt(3) / Y0 = 3.5) and linear softening towards a residual "
+      "strength below it (N_res = 5.86), run with two softening moduli. There is no closed form "
+      "for progressive failure: the cut must fail within the run (the crest moves {:g} m = "
+      "0.03 H towards the cut, which a cut that comes to rest does not reach) and the stronger "
+      "softening must fail sooner.",
+      kFailureDisplacement));
+  Figure crest{"crest_displacement",
+               "Horizontal displacement of the crest towards the cut",
+               "time [s]",
+               "crest displacement u_x [m]",
+               {}};
+  Series failures{"failure (threshold crossed)", {}, {}, "points"};
+  for (const SofteningRun* run : runs) {
+    const double modulus_mpa = run->hardening_modulus * 1e-6;
+    crest.series.push_back(
+        {std::isfinite(run->failure_time)
+             ? fmt::format("H = {:g} MPa, fails at t = {:.2f} s", modulus_mpa, run->failure_time)
+             : fmt::format("H = {:g} MPa, no failure", modulus_mpa),
+         run->probes.time(), run->probes.column("crest.displacement_x"), "line"});
+    if (std::isfinite(run->failure_time)) {
+      failures.x.push_back(run->failure_time);
+      failures.y.push_back(kFailureDisplacement);
+    }
+  }
+  crest.series.push_back(std::move(failures));
+  crest.series.push_back(
+      sample_curve(fmt::format("failure threshold 0.03 H = {:g} m", kFailureDisplacement), 0.0,
+                   end_time, 2, [](double) { return kFailureDisplacement; }));
+  report.add_figure(std::move(crest));
+  const SofteningRun& strong = *runs.front();
+  report.add_picture(
+      {"eps_vp_band", strong.directory.string(), "eps_vp", -1, -1.0, 1.0,
+       fmt::format("Equivalent viscoplastic strain at t = {:g} s with H = {:g} MPa, on the "
+                   "deformed configuration (displacements at true scale): the band from the toe "
+                   "to the crest.",
+                   end_time, strong.hardening_modulus * 1e-6)});
 }
 
 }  // namespace
@@ -38,8 +96,10 @@ std::vector<CheckResult> validate_slope_softening(const ValidationContext& conte
   std::vector<CaseOverride> base = {{"output.interval", "0"}};
   if (context.quick) base.push_back({"geometry.spacing", "1.0"});  // 10 cells over H
   const double end_time = 12.0;                                    // as in case.yaml
-  const double strong = failure_time(context, base, -1.0e6);
-  const double mild = failure_time(context, base, -2.5e5);
+  const SofteningRun strong_run = failure_time(context, base, -1.0e6);
+  const SofteningRun mild_run = failure_time(context, base, -2.5e5);
+  if (context.report) report_softening(*context.report, {&strong_run, &mild_run}, end_time);
+  const double strong = strong_run.failure_time, mild = mild_run.failure_time;
   const bool monotone = std::isfinite(strong) && std::isfinite(mild) && strong < mild;
   // A failure time passes if the cut fails within the run (NaN, no failure, fails the check).
   // There is no closed form to compare it with; the thesis (Fig. 4-35) shows the band growing from

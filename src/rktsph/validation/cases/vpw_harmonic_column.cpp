@@ -26,7 +26,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <numbers>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -175,23 +177,37 @@ double fitted_amplitude(const ProbeTable& probes, const std::string& column, dou
   return std::hypot(x[0], x[1]);
 }
 
-/// max over the rows of ||p_w|_fit - |P(z)|| / q0.
-double amplitude_error(const ValidationContext& context, const HarmonicSetup& setup,
-                       const CaseDescription& base_description, double permeability_group,
-                       double periods, const std::string& label) {
+/// One run: the fitted amplitude of every row and the check's error.
+struct AmplitudeProfile {
+  double conductivity = 0.0;       // k [m/s]
+  double error = 0.0;              // max over the rows of ||p_w|_fit - |P(z)|| / q0
+  std::vector<double> heights;     // y of the rows, bottom to top
+  std::vector<double> amplitudes;  // |p_w|_fit of the rows [Pa]
+  std::filesystem::path run_directory;
+  double peak_time = -1.0;  // in the last period, when |p_w| at the base is largest
+};
+
+/// Runs one permeability; max over the rows of ||p_w|_fit - |P(z)|| / q0. With `field_interval`
+/// > 0, field output every `field_interval` seconds (for the report's picture).
+AmplitudeProfile amplitude_error(const ValidationContext& context, const HarmonicSetup& setup,
+                                 const CaseDescription& base_description, double permeability_group,
+                                 double periods, const std::string& label,
+                                 double field_interval = 0.0) {
   CaseDescription description = base_description;
+  AmplitudeProfile profile;
   const double conductivity = conductivity_for(setup, permeability_group);
+  profile.conductivity = conductivity;
   description.pore_fluid->hydraulic_conductivity = conductivity;
   const double end = periods * setup.period;
   TimeFunction& traction = top_traction(description);
   traction = ramped(traction, end + setup.period);
   description.time.end = end;
   description.output.probe_interval = 0.0;
-  description.output.interval = setup.period * 5.0;
+  description.output.interval = field_interval > 0.0 ? field_interval : setup.period * 5.0;
   add_row_probes(description, "vpw_row_", setup.x_min, setup.x_max, setup.base, setup.spacing,
                  setup.rows(), "pore_pressure");
-  const ProbeTable probes =
-      ProbeTable::read(run_for_validation(context, description, label) / "probes.csv");
+  profile.run_directory = run_for_validation(context, description, label);
+  const ProbeTable probes = ProbeTable::read(profile.run_directory / "probes.csv");
   const references::HarmonicColumnSolution reference(reference_column(setup, conductivity));
   const double last = probes.time().back();
   double error = 0.0;
@@ -201,8 +217,69 @@ double amplitude_error(const ValidationContext& context, const HarmonicSetup& se
         fitted_amplitude(probes, fmt::format("vpw_row_{}.pore_pressure", row),
                          setup.angular_frequency(), last - 2.0 * setup.period, last);
     error = std::max(error, std::abs(amplitude - std::abs(reference.pressure(depth))) / setup.load);
+    profile.heights.push_back(setup.base + row * setup.spacing);
+    profile.amplitudes.push_back(amplitude);
   }
-  return error;
+  profile.error = error;
+  const auto& time = probes.time();
+  const auto& base = probes.column("base.pore_pressure");
+  double largest = -1.0;
+  for (std::size_t i = 0; i < time.size(); ++i)
+    if (time[i] >= last - setup.period && std::abs(base[i]) > largest) {
+      largest = std::abs(base[i]);
+      profile.peak_time = time[i];
+    }
+  return profile;
+}
+
+/// The amplitude profiles of the three runs against the ZCB solution, and a picture of p_w.
+void report_harmonic_column(ValidationReport& report, const HarmonicSetup& setup,
+                            std::span<const double> groups,
+                            std::span<const AmplitudeProfile> profiles, double periods) {
+  constexpr int kProfileSamples = 401;
+  Figure figure{"amplitude_profiles",
+                "Steady-state pore-pressure amplitude along the column, Pi2 = 1",
+                "pore-pressure amplitude |p_w| / q0 [-]",
+                "height above the base y [m] (loaded, drained top at y = L)",
+                {}};
+  for (std::size_t k = 0; k < profiles.size(); ++k) {
+    const AmplitudeProfile& profile = profiles[k];
+    Series measured{
+        fmt::format("SPH, Pi1 = {:g} (k = {:.3g} m/s)", groups[k], profile.conductivity),
+        profile.amplitudes, profile.heights, "points"};
+    for (double& amplitude : measured.x)
+      amplitude /= setup.load;
+    const references::HarmonicColumnSolution reference(
+        reference_column(setup, profile.conductivity));
+    Series exact{fmt::format("ZCB 1980, Pi1 = {:g}", groups[k]), {}, {}, "dashed"};
+    for (int i = 0; i < kProfileSamples; ++i) {
+      const double depth = setup.depth * i / (kProfileSamples - 1);
+      exact.x.push_back(reference.pressure_ratio(depth));
+      exact.y.push_back(setup.base + setup.depth - depth);
+    }
+    figure.series.push_back(std::move(measured));
+    figure.series.push_back(std::move(exact));
+  }
+  report.describe(fmt::format(
+      "Thesis 6.4.3: a saturated elastic column (L = {:g} m, dx = {:g} m, fixed impermeable base, "
+      "drained top) under a harmonic surface load of amplitude q0 = {:g} kPa and period T = {:.4g} "
+      "s (frequency group Pi2 = 1, below the undrained resonance), ramped in over {:g} periods and "
+      "run for {:g}. One run per permeability group Pi1 = 0.1, 1 and 10. The amplitude of p_w at "
+      "each lattice row is the least-squares fit of a cos(wt) + b sin(wt) + c over the last two "
+      "periods; the reference is the steady-state u-p solution of Zienkiewicz, Chang and Bettess "
+      "(1980) without the fluid acceleration in Darcy's law, as in the v-pw model. At Pi1 = 10 "
+      "the column drains within a period and |p_w| stays small; at Pi1 = 0.1 it is nearly "
+      "undrained, the load is carried by the water and amplified by inertia towards the base, "
+      "with a thin drained boundary layer under the top.",
+      setup.depth, setup.spacing, 1e-3 * setup.load, setup.period, kRampPeriods, periods));
+  report.add_figure(std::move(figure));
+  const AmplitudeProfile& shown = profiles[profiles.size() / 2];
+  report.add_picture({"pore_pressure_pi1_1", shown.run_directory.string(), "pore_pressure", -1,
+                      shown.peak_time, 0.0,
+                      fmt::format("Pore pressure at Pi1 = {:g} in the last period, at the field "
+                                  "output nearest the largest |p_w| at the base: zero at the "
+                                  "drained top, rising with depth.",
+                                  groups[profiles.size() / 2])});
 }
 
 }  // namespace
@@ -215,13 +292,18 @@ std::vector<CheckResult> validate_vpw_harmonic_column(const ValidationContext& c
   const double groups[3] = {0.1, 1.0, 10.0};
   const double periods = context.quick ? 16.0 : 30.0;
   std::vector<CheckResult> checks;
+  std::vector<AmplitudeProfile> profiles;
   for (int k = 0; k < 3; ++k) {
-    const double error = amplitude_error(context, setup, description, groups[k], periods,
-                                         fmt::format("pi1-{}", groups[k]));
+    // Field output every T/8 when reporting, for the picture (it does not change the run).
+    profiles.push_back(amplitude_error(context, setup, description, groups[k], periods,
+                                       fmt::format("pi1-{}", groups[k]),
+                                       context.report ? setup.period / 8.0 : 0.0));
+    const double error = profiles.back().error;
     // 0.05 q0: validation.md §6.4.3, for Pi2 <= 1 away from resonance.
     checks.push_back(
         check_at_most(fmt::format("amplitude_error_k{}", k + 1), error, 0.0, 0.05, "fraction"));
   }
+  if (context.report) report_harmonic_column(*context.report, setup, groups, profiles, periods);
   return checks;
 }
 

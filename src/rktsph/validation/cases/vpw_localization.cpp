@@ -8,10 +8,17 @@
 //                      half-diagonal plus one spacing).
 // The pore-pressure change inside the band (mean p_w of the band strip minus that of the quiet
 // upper part, at the end) is written to the report description; it is a result, not a check.
+// The report also draws the band's centre line (row by row and as fitted) against the 45° line
+// through the weak zone, p_w in and out of the band, and pictures of eps_vp and p_w.
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <filesystem>
+#include <numbers>
 #include <optional>
 #include <span>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -27,6 +34,104 @@ namespace {
 constexpr double kQuickSpacing = 0.05;    // 21 x 41 nodes, as the dry quick variant
 constexpr double kWeakZoneCentre = 0.05;  // the weak zone is [0, 0.1] x [0, 0.1]
 constexpr double kWeakZoneHalfDiagonal = 0.0707;
+// The lattice rows whose band centre the report draws: between the weak zone and where the band
+// leaves the right side [m].
+constexpr double kRidgeLow = 0.15, kRidgeHigh = 0.85;
+
+/// Centre of the band on each lattice row with y in [y_low, y_high]: the mean x of the nodes of
+/// the row weighted by the excess of eps_vp over `threshold` (as the band measurement weights
+/// them). Returns (x, y) pairs, bottom to top.
+std::vector<std::pair<double, double>> ridge_centres(const Simulation& simulation,
+                                                     const double* strain, double threshold,
+                                                     double y_low, double y_high) {
+  const NodeSets& nodes = simulation.nodes();
+  std::vector<std::pair<double, double>> centres;
+  for (long row = 0; row < nodes.lattice_size[1]; ++row) {
+    const double y = nodes.origin[1] + static_cast<double>(row) * nodes.spacing;
+    if (y < y_low - 1e-9 || y > y_high + 1e-9) continue;
+    double weight = 0.0, moment = 0.0;
+    for (std::size_t k = 0; k < nodes.sph_nodes.size(); ++k) {
+      if (nodes.node_index[k][1] != row || strain[k] <= threshold) continue;
+      weight += strain[k] - threshold;
+      moment +=
+          (strain[k] - threshold) * (nodes.origin[0] + nodes.node_index[k][0] * nodes.spacing);
+    }
+    if (weight > 0.0) centres.emplace_back(moment / weight, y);
+  }
+  return centres;
+}
+
+/// The band's centre line against the 45-degree line from the weak zone, p_w in and out of the
+/// band against time, and pictures of eps_vp and p_w.
+void report_localization(ValidationReport& report, const std::filesystem::path& run_directory,
+                         const BandMeasurement& band,
+                         const std::vector<std::pair<double, double>>& centres,
+                         const std::array<double, 3>& largest_pressure, double spacing) {
+  const double reference_angle = references::j2_plane_strain_band_angle_deg();
+  const BandLine& line = band.primary;
+  Series measured{"SPH: band centre on each lattice row (eps_vp-weighted)", {}, {}, "points"};
+  for (const auto& [x, y] : centres) {
+    measured.x.push_back(x);
+    measured.y.push_back(y);
+  }
+  // The fitted ridge line: direction_deg counter-clockwise from the vertical axis.
+  const double fitted_slope = -std::tan(line.direction_deg * std::numbers::pi / 180.0);
+  const double reference_slope = std::tan(reference_angle * std::numbers::pi / 180.0);
+  Series fitted{
+      fmt::format("ridge fit of the check: {:.1f} degrees from the vertical", line.angle_deg),
+      {line.centre_x + (kRidgeLow - line.centre_y) * fitted_slope,
+       line.centre_x + (kRidgeHigh - line.centre_y) * fitted_slope},
+      {kRidgeLow, kRidgeHigh},
+      "line"};
+  Series reference{
+      fmt::format("{:g} degrees from the vertical through the weak zone centre", reference_angle),
+      {kWeakZoneCentre + (kRidgeLow - kWeakZoneCentre) * reference_slope,
+       kWeakZoneCentre + (kRidgeHigh - kWeakZoneCentre) * reference_slope},
+      {kRidgeLow, kRidgeHigh},
+      "dashed"};
+  report.add_figure({"band_fit",
+                     "Shear band at the end of the run: centre line against the reference",
+                     "x [m]",
+                     "y [m] (axes not to scale)",
+                     {std::move(measured), std::move(fitted), std::move(reference)}});
+
+  const ProbeTable probes = ProbeTable::read(run_directory / "probes.csv");
+  const double end = probes.time().back();
+  const double change =
+      probes.mean("band.pore_pressure", end, end) - probes.mean("quiet.pore_pressure", end, end);
+  Series in_band{"mean in the band strip (45-degree strip from the weak zone)", probes.time(),
+                 probes.column("band.pore_pressure"), "line"};
+  Series quiet{"mean in the quiet upper part (y > 1.3 m)", probes.time(),
+               probes.column("quiet.pore_pressure"), "line"};
+  for (Series* series : {&in_band, &quiet})
+    for (double& p : series->y)
+      p *= 1e-3;
+  report.add_figure({"pore_pressure_band",
+                     "Excess pore pressure in and out of the band",
+                     "time [s]",
+                     "excess pore pressure p_w [kPa]",
+                     {std::move(in_band), std::move(quiet)}});
+
+  report.describe(fmt::format(
+      "Thesis 6.4.5: the plane-strain compression sample of 4.4 (dx = {:g} m, "
+      "softening Von Mises-Perzyna on the effective stress, weak zone in the lower left corner) "
+      "saturated, with a low permeability and drained faces: nearly undrained over the run. "
+      "Undrained "
+      "J2 flow is isochoric, so the band should run at {:g} degrees from the loading axis, "
+      "starting from the weak zone. Measured band (ridge fit of eps_vp at the end): {:.1f} "
+      "degrees, {:.3f} m from the weak zone centre. Pore pressure in the band minus above it "
+      "at the end: {:.1f} kPa (a result, not a check).",
+      spacing, reference_angle, band.primary.angle_deg,
+      distance_to_band(band.primary, kWeakZoneCentre, kWeakZoneCentre), change / 1000.0));
+  report.add_picture({"eps_vp", run_directory.string(), "eps_vp", -1, -1.0, 0.0,
+                      "Equivalent viscoplastic strain at the end: the shear band from the weak "
+                      "corner (lower left) across the sample."});
+  report.add_picture(
+      {"pore_pressure", run_directory.string(), "pore_pressure", -1, -1.0, 0.0,
+       fmt::format("Excess pore pressure at the end (drained sides and top: p_w = 0 there). "
+                   "Largest |p_w|: {:.0f} kPa at the node (x, y) = ({:g}, {:g}) m.",
+                   1e-3 * largest_pressure[0], largest_pressure[1], largest_pressure[2])});
+}
 
 }  // namespace
 
@@ -36,6 +141,8 @@ std::vector<CheckResult> validate_vpw_localization(const ValidationContext& cont
   const CaseDescription description = load_bundled_case(context, "vpw-localization", overrides);
 
   std::optional<BandMeasurement> band;
+  std::vector<std::pair<double, double>> centres;
+  std::array<double, 3> largest_pressure{};  // p_w, x, y of the largest |p_w| at the end
   const auto measure_final_band = [&](const Simulation& simulation) {
     const auto& names = simulation.model().internal_names();
     const auto field = std::find(names.begin(), names.end(), "eps_vp");
@@ -45,21 +152,22 @@ std::vector<CheckResult> validate_vpw_localization(const ValidationContext& cont
         simulation.state().internal.field(static_cast<int>(field - names.begin()));
     band = measure_band(nodes.position[0], nodes.position[1],
                         std::span<const double>(strain, nodes.size()), BandAngleOptions{});
+    if (context.report) {
+      centres = ridge_centres(simulation, strain, band->threshold, kRidgeLow, kRidgeHigh);
+      const int pore = simulation.model().pore_pressure_field();
+      for (std::size_t k = 0; k < nodes.size(); ++k)
+        if (const double value = simulation.state().fields(pore, k);
+            std::abs(value) > std::abs(largest_pressure[0]))
+          largest_pressure = {value, nodes.position[0][k], nodes.position[1][k]};
+    }
   };
   const auto directory = run_for_validation(context, description, context.quick ? "quick" : "full",
                                             measure_final_band);
   if (!band) throw RunError("vpw-localization: the band was not measured");
 
-  if (context.report) {
-    const ProbeTable probes = ProbeTable::read(directory / "probes.csv");
-    const double end = probes.time().back();
-    const double change =
-        probes.mean("band.pore_pressure", end, end) - probes.mean("quiet.pore_pressure", end, end);
-    context.report->describe(fmt::format(
-        "Saturated sample (k = 1e-6 m/s) in plane-strain compression; band at {:.1f} deg. Pore "
-        "pressure in the band minus above it at the end: {:.1f} kPa.",
-        band->primary.angle_deg, change / 1000.0));
-  }
+  if (context.report)
+    report_localization(*context.report, directory, *band, centres, largest_pressure,
+                        description.geometry.spacing);
   return {
       check_within("shear_band_angle", band->primary.angle_deg,
                    references::j2_plane_strain_band_angle_deg(), 3.0, "deg"),

@@ -9,8 +9,13 @@
 //                              see checkerboard_amplitude() for why a 3x3 stencil and which nodes.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <numbers>
+#include <string>
+#include <utility>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "rktsph/validation/references/limit_loads.hpp"
 #include "rktsph/validation/validation_cases.hpp"
@@ -102,6 +107,104 @@ double max_abs(const LatticeField& field) {
   return largest;
 }
 
+/// The ramped traction y on the footing group (-q(t)).
+const TimeFunction* footing_traction(const CaseDescription& description) {
+  for (const BoundaryConditionSpec& condition : description.boundary_conditions)
+    if (condition.group == "footing" && condition.kind == BoundaryConditionSpec::Kind::Traction &&
+        condition.traction[1])
+      return &*condition.traction[1];
+  return nullptr;
+}
+
+/// Centre-line p_w against depth and the histories at z = b and 2b, each against the undrained
+/// half-plane value, and a picture of p_w.
+void report_strip_footing(ValidationReport& report, const CaseDescription& description,
+                          const std::filesystem::path& run_directory, const LatticeField& field,
+                          double factor, double centre_line_error, double checkerboard) {
+  const auto reference = [factor](double load, double depth) {
+    return factor * references::strip_centre_line_pore_pressure(load, kHalfWidth, depth);
+  };
+  // Every node of the centre line x = 0, from the surface down.
+  Series centre_line{"SPH, centre-line nodes", {}, {}, "points"};
+  const int column = static_cast<int>(std::lround(-field.origin_x / field.spacing));
+  for (int j = field.rows - 1; j >= 0; --j) {
+    const double value = field.at(column, j);
+    if (std::isnan(value)) continue;
+    centre_line.x.push_back(kSurface - (field.origin_y + j * field.spacing));
+    centre_line.y.push_back(1e-3 * value);
+  }
+  Series checked{"SPH at the checked depths z/b = 0.5, 1, 2", {}, {}, "points"};
+  std::string errors;
+  for (double depth_ratio : kDepthsOverHalfWidth) {
+    const double depth = depth_ratio * kHalfWidth;
+    const double value = centre_line_value(field, depth);
+    checked.x.push_back(depth);
+    checked.y.push_back(1e-3 * value);
+    errors += fmt::format("{}{:.1f} % at z/b = {:g}", errors.empty() ? "" : ", ",
+                          100.0 * relative_error(value, reference(kLoad, depth)), depth_ratio);
+  }
+  const double bottom = centre_line.x.empty() ? kSurface : centre_line.x.back();
+  report.add_figure({"centreline_pressure",
+                     "Pore pressure on the centre line under the strip load, end of the run",
+                     "depth below the loaded surface z [m]",
+                     "excess pore pressure p_w [kPa]",
+                     {std::move(centre_line), std::move(checked),
+                      sample_curve("undrained half-plane F (2q/pi) atan(b/z)", 0.0, bottom, 2000,
+                                   [&](double depth) { return 1e-3 * reference(kLoad, depth); })}});
+
+  const ProbeTable probes = ProbeTable::read(run_directory / "probes.csv");
+  const TimeFunction* traction = footing_traction(description);
+  const double end = probes.time().back();
+  Figure histories{"probe_pressure",
+                   "Pore pressure on the centre line at z = b and z = 2b",
+                   "time [s]",
+                   "excess pore pressure p_w [kPa]",
+                   {}};
+  const std::pair<const char*, double> stations[] = {{"b.pore_pressure", 1.0},
+                                                     {"twob.pore_pressure", 2.0}};
+  for (const auto& [column_name, depth_ratio] : stations) {
+    Series measured{fmt::format("SPH, z = {:g} b", depth_ratio), probes.time(),
+                    probes.column(column_name), "line"};
+    for (double& p : measured.y)
+      p *= 1e-3;
+    histories.series.push_back(std::move(measured));
+    if (traction)
+      histories.series.push_back(
+          sample_curve(fmt::format("undrained, z = {:g} b, under the applied q(t)", depth_ratio),
+                       0.0, end, 2000, [&, depth_ratio](double t) {
+                         return 1e-3 * reference(-(*traction)(t), depth_ratio * kHalfWidth);
+                       }));
+  }
+  report.add_figure(std::move(histories));
+
+  report.describe(fmt::format(
+      "Thesis 6.4.4: a flexible strip load q = {:g} kPa, b = {:g} m, ramped in over the first "
+      "{:g} s onto a nearly undrained saturated elastic stratum (half model, symmetry plane x = "
+      "0, dx = {:g} m, drained surface, mass damping to remove the ringing); the state is read at "
+      "the end. Reference: the undrained half-plane pore pressure on the centre line, p0 = F "
+      "(2q/pi) atan(b/z), F = {:.4f} the compressible-fluid factor. Measured error against it: "
+      "{} (largest {:.1f} %); checkerboard ratio {:.4f}. The centre-line check is a known open "
+      "problem.",
+      1e-3 * kLoad, kHalfWidth, traction ? traction->duration : 0.0, field.spacing, factor, errors,
+      100.0 * centre_line_error, checkerboard));
+  double largest = 0.0, largest_x = 0.0, largest_depth = 0.0;
+  for (int j = 0; j < field.rows; ++j)
+    for (int i = 0; i < field.columns; ++i)
+      if (const double value = field.at(i, j);
+          !std::isnan(value) && std::abs(value) > std::abs(largest)) {
+        largest = value;
+        largest_x = field.origin_x + i * field.spacing;
+        largest_depth = kSurface - (field.origin_y + j * field.spacing);
+      }
+  report.add_picture(
+      {"pore_pressure", run_directory.string(), "pore_pressure", -1, -1.0, 0.0,
+       fmt::format("Excess pore pressure at the end of the run; the strip load covers 0 < x < b = "
+                   "{:g} m at the top left, the surface is drained. Largest |p_w|: {:.0f} kPa "
+                   "({:.1f} q) at the node x = {:g} m, z = {:g} m.",
+                   kHalfWidth, 1e-3 * largest, std::abs(largest) / kLoad, largest_x,
+                   largest_depth)});
+}
+
 }  // namespace
 
 std::vector<CheckResult> validate_vpw_strip_footing_elastic(const ValidationContext& context) {
@@ -110,7 +213,7 @@ std::vector<CheckResult> validate_vpw_strip_footing_elastic(const ValidationCont
   const CaseDescription description =
       load_bundled_case(context, "vpw-strip-footing-elastic", overrides);
   LatticeField field;
-  run_for_validation(
+  const std::filesystem::path run_directory = run_for_validation(
       context, description, context.quick ? "quick" : "full",
       [&](const Simulation& simulation) { field = pore_pressure_on_lattice(simulation); });
 
@@ -125,6 +228,9 @@ std::vector<CheckResult> validate_vpw_strip_footing_elastic(const ValidationCont
         std::max(centre_line_error, relative_error(centre_line_value(field, depth), reference));
   }
   const double checkerboard = checkerboard_amplitude(field) / max_abs(field);
+  if (context.report)
+    report_strip_footing(*context.report, description, run_directory, field, factor,
+                         centre_line_error, checkerboard);
   // 10 %: the box walls account for up to 1.8 %, the drained-surface boundary layer of the
   // projection (one to two nodes, prototype-vpw-findings.md §3.1) reaches z = b/2 only at
   // b/dx = 4, and the nodal load edge is resolved to dx/2 (b/dx = 4 in the quick variant: the same

@@ -13,8 +13,14 @@
 //                         the vertical: 45° ± 5° (§5.3.6).
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <numbers>
 #include <optional>
 #include <span>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include "rktsph/core/error.hpp"
 #include "rktsph/validation/band_angle.hpp"
@@ -31,11 +37,14 @@ constexpr double kYieldStress = 1.0e5;
 constexpr double kFootingWidth = 2.0;
 constexpr double kFootingLeft = 6.0;  // inner footing edge; the crest is at x = 8 m, y = 6 m
 constexpr double kCrestY = 6.0;
+constexpr double kFace = kFootingLeft + kFootingWidth;  // the cut face x = 8 m
 // The band is measured in the region the 45° wedge can reach: below the footing and up to 2B
 // under the crest, which leaves out the far field where eps_vp stays zero.
 constexpr double kBandRegionDepth = 2.0 * kFootingWidth;
 // Quick variant: B/dx = 8 instead of 16 (at B/dx = 4 the band measures 61°, not resolved).
 constexpr double kQuickSpacing = 0.25;
+// Lowest row of the report's band figure: where the 45° line from the footing edge meets the face.
+constexpr double kRidgeLow = kCrestY - kFootingWidth;
 
 // Mean over the footing nodes with trapezoidal weights (the two end nodes count half), from the
 // group mean of the probe and the two end-node probes.
@@ -63,6 +72,137 @@ BandMeasurement measure_wedge_band(const Simulation& simulation) {
   return measure_band(x, y, value, BandAngleOptions{});
 }
 
+/// What the report shows of the final state: the band centre on each lattice row of the wedge
+/// (the mean x of the nodes weighted by the excess of eps_vp over the band threshold, as the band
+/// measurement weights them) and the largest |p_w| with where it is.
+struct FinalState {
+  std::vector<std::pair<double, double>> centres;  // (x, y), bottom to top
+  double largest_pressure = 0.0, largest_x = 0.0, largest_y = 0.0;
+};
+
+FinalState final_state(const Simulation& simulation, double threshold) {
+  const auto& names = simulation.model().internal_names();
+  const auto field = std::find(names.begin(), names.end(), "eps_vp");
+  if (field == names.end()) throw RunError("vpw-vertical-cut-footing: the model has no eps_vp");
+  const double* strain = simulation.state().internal.field(static_cast<int>(field - names.begin()));
+  const NodeSets& nodes = simulation.nodes();
+  FinalState state;
+  for (long row = 0; row < nodes.lattice_size[1]; ++row) {
+    const double y = nodes.origin[1] + static_cast<double>(row) * nodes.spacing;
+    if (y < kRidgeLow - 1e-9 || y > kCrestY - 1e-9) continue;  // below the crest row
+    double weight = 0.0, moment = 0.0;
+    for (std::size_t k = 0; k < nodes.sph_nodes.size(); ++k) {
+      const double x = nodes.origin[0] + nodes.node_index[k][0] * nodes.spacing;
+      if (nodes.node_index[k][1] != row || x < kFootingLeft - kFootingWidth ||
+          strain[k] <= threshold)
+        continue;
+      weight += strain[k] - threshold;
+      moment += (strain[k] - threshold) * x;
+    }
+    if (weight > 0.0) state.centres.emplace_back(moment / weight, y);
+  }
+  const int pore = simulation.model().pore_pressure_field();
+  for (std::size_t k = 0; k < nodes.sph_nodes.size(); ++k) {
+    const double value = simulation.state().fields(pore, k);
+    if (std::abs(value) > std::abs(state.largest_pressure)) {
+      state.largest_pressure = value;
+      state.largest_x = nodes.sph_nodes.position[0][k];
+      state.largest_y = nodes.sph_nodes.position[1][k];
+    }
+  }
+  return state;
+}
+
+/// Footing pressure against settlement and time with the 2c plateau, the band's centre line
+/// against the 45-degree line from the footing edge, and pictures of eps_vp and p_w.
+void report_vertical_cut(ValidationReport& report, const std::filesystem::path& run_directory,
+                         const ProbeTable& probes, int footing_nodes, double spacing, double limit,
+                         double plateau, double plateau_start, const BandMeasurement& band,
+                         const FinalState& state) {
+  const auto& time = probes.time();
+  const auto& displacement = probes.column("footing.displacement_y");
+  Series load_settlement{"SPH, mean total vertical stress under the footing", {}, {}, "line"};
+  Series load_history{"SPH, mean total vertical stress under the footing", time, {}, "line"};
+  for (std::size_t row = 0; row < time.size(); ++row) {
+    const double pressure = 1e-3 * footing_pressure(probes, row, footing_nodes);
+    load_settlement.x.push_back(-1e3 * displacement[row]);
+    load_settlement.y.push_back(pressure);
+    load_history.y.push_back(pressure);
+  }
+  const double largest_settlement = load_settlement.x.empty() ? 1.0 : load_settlement.x.back();
+  const double end = time.empty() ? 1.0 : time.back();
+  report.add_figure(
+      {"load_settlement",
+       "Footing pressure against settlement",
+       "settlement of the footing [mm]",
+       "footing pressure q [kPa]",
+       {std::move(load_settlement), sample_curve("2 c_u = 2 Y / sqrt(3)", 0.0, largest_settlement,
+                                                 2, [&](double) { return 1e-3 * limit; })}});
+  report.add_figure(
+      {"load_history",
+       "Footing pressure against time (footing pushed at a constant rate)",
+       "time [s]",
+       "footing pressure q [kPa]",
+       {std::move(load_history),
+        sample_curve("2 c_u = 2 Y / sqrt(3)", 0.0, end, 2, [&](double) { return 1e-3 * limit; })}});
+
+  const double reference_angle = references::j2_plane_strain_band_angle_deg();
+  const BandLine& line = band.primary;
+  Series measured{"SPH: band centre on each lattice row (eps_vp-weighted)", {}, {}, "points"};
+  for (const auto& [x, y] : state.centres) {
+    measured.x.push_back(x);
+    measured.y.push_back(y);
+  }
+  // x(y) along the fitted ridge (direction_deg counter-clockwise from the vertical) and along the
+  // reference line down from the inner footing edge towards the face.
+  const double fitted_slope = -std::tan(line.direction_deg * std::numbers::pi / 180.0);
+  const double reference_slope = -std::tan(reference_angle * std::numbers::pi / 180.0);
+  const double top = kCrestY - spacing;
+  // The fitted line is drawn inside the body only: down to where it meets the face x = kFace.
+  double fitted_low = kRidgeLow;
+  if (fitted_slope < 0.0)
+    fitted_low = std::max(fitted_low, line.centre_y + (kFace - line.centre_x) / fitted_slope);
+  Series fitted{
+      fmt::format("ridge fit of the check: {:.1f} degrees from the vertical", line.angle_deg),
+      {line.centre_x + (fitted_low - line.centre_y) * fitted_slope,
+       line.centre_x + (top - line.centre_y) * fitted_slope},
+      {fitted_low, top},
+      "line"};
+  Series reference{
+      fmt::format("{:g} degrees from the vertical from the inner footing edge", reference_angle),
+      {kFootingLeft + (kRidgeLow - kCrestY) * reference_slope,
+       kFootingLeft + (top - kCrestY) * reference_slope},
+      {kRidgeLow, top},
+      "dashed"};
+  report.add_figure({"band_fit",
+                     "Wedge band at the end of the run: centre line against the reference",
+                     "x [m] (cut face at x = 8 m)",
+                     "y [m] (crest at y = 6 m; axes not to scale)",
+                     {std::move(measured), std::move(fitted), std::move(reference)}});
+
+  report.describe(fmt::format(
+      "Thesis 6.4.6: a smooth rigid strip footing B = {:g} m flush with the crest of a vertical "
+      "cut (half model, dx = {:g} m) in saturated, weightless Von Mises-Perzyna soil, "
+      "pushed down at a constant rate, with a low permeability (undrained over the run). "
+      "Reference: "
+      "the limit pressure 2 c_u = 2 Y/sqrt(3) = {:.1f} kPa, reached by the uniaxial column under "
+      "the footing and the 45-degree wedge from its inner edge to the face. The footing "
+      "pressure is the mean total vertical stress under the footing; measured plateau (mean over "
+      "t >= {:g} s, the checked value): {:.1f} kPa. Band (ridge fit of eps_vp at the end): "
+      "{:.1f} degrees from the vertical, reference {:g}.",
+      kFootingWidth, spacing, 1e-3 * limit, plateau_start, 1e-3 * plateau, line.angle_deg,
+      reference_angle));
+  report.add_picture({"eps_vp", run_directory.string(), "eps_vp", -1, -1.0, 0.0,
+                      "Equivalent viscoplastic strain at the end: the band from the inner footing "
+                      "edge (x = 6 m, top) down to the cut face (x = 8 m)."});
+  report.add_picture(
+      {"pore_pressure", run_directory.string(), "pore_pressure", -1, -1.0, 0.0,
+       fmt::format("Excess pore pressure at the end (drained top and face). Largest |p_w|: {:.0f} "
+                   "kPa at the node (x, y) = ({:g}, {:g}) m, {:.1f} times 2 c_u.",
+                   1e-3 * state.largest_pressure, state.largest_x, state.largest_y,
+                   std::abs(state.largest_pressure) / limit)});
+}
+
 }  // namespace
 
 std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationContext& context) {
@@ -74,12 +214,13 @@ std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationConte
   const int footing_nodes = static_cast<int>(std::lround(kFootingWidth / spacing)) + 1;
 
   std::optional<BandMeasurement> band;
-  const ProbeTable probes =
-      ProbeTable::read(run_for_validation(context, description, context.quick ? "quick" : "full",
-                                          [&](const Simulation& simulation) {
-                                            band = measure_wedge_band(simulation);
-                                          }) /
-                       "probes.csv");
+  FinalState state;
+  const std::filesystem::path run_directory = run_for_validation(
+      context, description, context.quick ? "quick" : "full", [&](const Simulation& simulation) {
+        band = measure_wedge_band(simulation);
+        if (context.report) state = final_state(simulation, band->threshold);
+      });
+  const ProbeTable probes = ProbeTable::read(run_directory / "probes.csv");
   if (!band) throw RunError("vpw-vertical-cut-footing: the band was not measured");
 
   const double end = description.time.end;
@@ -95,6 +236,9 @@ std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationConte
   plateau /= samples;
   const double limit = references::footing_on_cut_limit_pressure(
       references::von_mises_plane_strain_cohesion(kYieldStress));
+  if (context.report)
+    report_vertical_cut(*context.report, run_directory, probes, footing_nodes, spacing, limit,
+                        plateau, 0.8 * end, *band, state);
 
   // 10 % (5 % in validation.md for a converged dry run): the collapse load of a Perzyna material
   // is within 1 % of 2c at this rate, the rest covers the footing edge resolved to dx/2 on B/dx = 8
