@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 #include <Eigen/IterativeLinearSolvers>
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include "rktsph/case/case_reader.hpp"
@@ -32,6 +33,7 @@ struct ColumnSetup {
   double end = 0.1;
   std::string preconditioner = "jacobi";
   bool hourglass_filter = true;
+  double stabilisation = -1.0;  // checkerboard_stabilisation theta; < 0: the default
 };
 
 constexpr double kYoung = 1e7, kPoisson = 0.3, kDensity = 2000.0, kPorosity = 0.3;
@@ -60,7 +62,7 @@ pore_fluid:
   porosity: {n}
   hydraulic_conductivity: {k}
   biot_coefficient: {alpha}
-  preconditioner: {preconditioner}
+  preconditioner: {preconditioner}{stabilisation}
 boundary_conditions:
   - {{group: xmin, roller: x}}
   - {{group: xmax, roller: x}}
@@ -79,6 +81,10 @@ time:
       fmt::arg("kw", setup.fluid_bulk_modulus), fmt::arg("rho_w", kFluidDensity),
       fmt::arg("n", kPorosity), fmt::arg("k", setup.hydraulic_conductivity),
       fmt::arg("alpha", setup.biot_coefficient), fmt::arg("preconditioner", setup.preconditioner),
+      fmt::arg("stabilisation",
+               setup.stabilisation < 0.0
+                   ? std::string()
+                   : fmt::format("\n  checkerboard_stabilisation: {}", setup.stabilisation)),
       fmt::arg("load", -setup.load), fmt::arg("ramp", setup.ramp), fmt::arg("end", setup.end));
   return read_case_text(text, "saturated-column.yaml");
 }
@@ -104,14 +110,17 @@ std::vector<PressureSample> pressures(const Simulation& simulation) {
 
 TEST(PressureProjection, SystemMatrixIsEquation63) {
   // Rebuild K from Ltilde and the constants, independently of the assembly: free rows
-  //   K_IJ = V_eff,I / (Q dt) delta_IJ - (alpha^2 dt / rho + k_bar) Ltilde_IJ,
+  //   K_IJ = V_eff,I / (Q dt) delta_IJ - (alpha^2 dt / rho + k_bar) Ltilde_IJ + S_IJ,
   // drained (top) rows decoupled with K_II = V_eff,I / dt. Round-off of a few sums: 1e-12.
+  // S, the checkerboard stabilisation, is checked on its own below.
   ColumnSetup setup;
   const Simulation simulation(column_case(setup));
   const PressureProjection& projection = *simulation.pressure_projection();
   const double dt = simulation.time_step();
   const Eigen::MatrixXd ltilde = Eigen::MatrixXd(projection.laplacian().weighted);
   const Eigen::MatrixXd system = Eigen::MatrixXd(projection.system());
+  const Eigen::MatrixXd stabilisation = Eigen::MatrixXd(projection.stabilisation());
+  ASSERT_EQ(stabilisation.rows(), system.rows());
   const auto& volume = projection.laplacian().effective_volume;
   const double alpha = setup.biot_coefficient;
   const double k_bar = setup.hydraulic_conductivity / (kFluidDensity * kGravity);
@@ -127,7 +136,7 @@ TEST(PressureProjection, SystemMatrixIsEquation63) {
       if (drained(i) || drained(j)) {
         if (i == j) expected = volume[static_cast<std::size_t>(i)] / dt;
       } else {
-        expected = -coefficient * ltilde(i, j);
+        expected = -coefficient * ltilde(i, j) + stabilisation(i, j);
         if (i == j) expected += volume[static_cast<std::size_t>(i)] / (biot_modulus(setup) * dt);
       }
       ASSERT_NEAR(system(i, j), expected, 1e-12 * scale) << i << ", " << j;
@@ -181,7 +190,7 @@ TEST(PressureProjection, ConjugateGradientsConvergeWithinTheChebyshevBound) {
   setup.end = 0.3;  // ~110 steps, through the load ramp and the undrained wave
   Simulation simulation(column_case(setup));
   const Eigen::MatrixXd system = Eigen::MatrixXd(simulation.pressure_projection()->system());
-  const double tolerance = 1e-10;  // the solver default (algorithm.md §6.3)
+  const double tolerance = 1e-10;  // tighter than the solver default (1e-8)
   const long bound = chebyshev_iteration_bound(system, tolerance);
   const auto n = system.rows();
   // The bound is below the solver's default iteration limit (2n + 10), which it must never hit.
@@ -205,13 +214,16 @@ TEST(PressureProjection, ConjugateGradientsConvergeWithinTheChebyshevBound) {
   RecordProperty("chebyshev_bound", static_cast<int>(bound));
   EXPECT_LE((system * solution - rhs).norm(), 1e-9 * rhs.norm());
 
-  // In the run, warm-started from p^n (whose residual is below ||b|| once the pressure varies
-  // smoothly in time), no solve may need more than the cold bound.
+  // In the run, at the default tolerance and started from the extrapolated p_w (whose residual is
+  // below ||b|| once the pressure varies smoothly in time), no solve may need more than the cold
+  // bound for that tolerance.
+  const double run_tolerance = PoreFluidSpec{}.solver_tolerance;
+  const long run_bound = chebyshev_iteration_bound(system, run_tolerance);
   ASSERT_EQ(simulation.run(), RunStatus::Completed) << simulation.message();
   const SolverStatistics& statistics = simulation.pressure_projection()->statistics();
   EXPECT_GT(statistics.solves, 100);
-  EXPECT_LE(statistics.max_iterations, bound);
-  EXPECT_LE(statistics.last_residual, tolerance);
+  EXPECT_LE(statistics.max_iterations, run_bound);
+  EXPECT_LE(statistics.last_residual, run_tolerance);
   RecordProperty("run_max_iterations", static_cast<int>(statistics.max_iterations));
   RecordProperty("run_mean_iterations",
                  static_cast<int>(statistics.total_iterations / statistics.solves));
@@ -219,7 +231,7 @@ TEST(PressureProjection, ConjugateGradientsConvergeWithinTheChebyshevBound) {
 
 TEST(PressureProjection, IncompleteCholeskyGivesTheSameSolution) {
   // The preconditioner changes the iterations, not the answer: both solves stop at a relative
-  // residual of 1e-10, so the pressures agree to ~1e-10 q times the condition growth; 1e-6 q.
+  // residual of 1e-8, so the pressures agree to ~1e-8 q times the condition growth; 1e-6 q.
   ColumnSetup setup;
   setup.end = 0.2;
   Simulation jacobi(column_case(setup));
@@ -288,6 +300,178 @@ TEST(SaturatedColumn, DrainedLimitGivesNoExcessPressure) {
   ASSERT_EQ(simulation.run(), RunStatus::Completed) << simulation.message();
   for (const PressureSample& sample : pressures(simulation))
     EXPECT_LE(std::abs(sample.pressure), 1e-2 * setup.load) << "y = " << sample.y;
+}
+
+// The lattice checkerboard (-1)^(i+j) at the SPH nodes.
+double checkerboard_sign(const PointCloud& nodes, std::size_t i, double spacing) {
+  return (std::lround(nodes.position[0][i] / spacing) +
+          std::lround(nodes.position[1][i] / spacing)) %
+                     2 ==
+                 0
+             ? 1.0
+             : -1.0;
+}
+
+TEST(PressureProjection, CheckerboardStabilisationIsConservativeAndLeavesSeparableFieldsAlone) {
+  // S = sum_cells w_c b_c b_c^T (docs/theory.md §6.6) on a 9 x 21 node block with mirror sides
+  // and base: symmetric, positive semi-definite, rows summing to zero (conservative: it moves
+  // water between nodes, creates none), zero on every f(x) + g(y) (linear and quadratic fields,
+  // the drained-face boundary layer), and on the checkerboard exactly theta (alpha^2 dt / rho)
+  // times the Laplacian, i.e. the strength the projection term has on checkerboard increments.
+  // Round-off of sums of ~16 terms of size |S|: 1e-12 |S| |f|.
+  ColumnSetup setup;
+  setup.width = 2.0;
+  setup.stabilisation = 0.1;
+  const Simulation simulation(column_case(setup));
+  const PressureProjection& projection = *simulation.pressure_projection();
+  const Eigen::MatrixXd stabilisation = Eigen::MatrixXd(projection.stabilisation());
+  const Eigen::MatrixXd ltilde = Eigen::MatrixXd(projection.laplacian().weighted);
+  const PointCloud& nodes = simulation.nodes().sph_nodes;
+  const auto n = static_cast<Eigen::Index>(nodes.size());
+  ASSERT_EQ(stabilisation.rows(), n);
+  const double scale = stabilisation.cwiseAbs().maxCoeff();
+  ASSERT_GT(scale, 0.0);
+  EXPECT_LE((stabilisation - stabilisation.transpose()).cwiseAbs().maxCoeff(), 1e-14 * scale);
+  EXPECT_LE(stabilisation.rowwise().sum().cwiseAbs().maxCoeff(), 1e-12 * scale);
+  EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(stabilisation).eigenvalues().minCoeff(),
+            -1e-12 * scale);
+
+  const std::function<double(double, double)> separable[] = {
+      [](double x, double y) { return 1.0 + 2.0 * x - 3.0 * y; },
+      [](double x, double y) { return x * x - 2.0 * y * y; },
+      [](double x, double y) { return std::sin(3.0 * x) + std::exp(0.5 * y); },
+      [](double, double y) { return y > 4.5 ? 0.0 : 1.0; },  // a drained-face boundary layer
+  };
+  for (const auto& f : separable) {
+    Eigen::VectorXd values(n);
+    for (Eigen::Index i = 0; i < n; ++i)
+      values[i] = f(nodes.position[0][static_cast<std::size_t>(i)],
+                    nodes.position[1][static_cast<std::size_t>(i)]);
+    EXPECT_LE((stabilisation * values).cwiseAbs().maxCoeff(),
+              1e-12 * scale * values.cwiseAbs().maxCoeff());
+  }
+
+  Eigen::VectorXd checkerboard(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    checkerboard[i] = checkerboard_sign(nodes, static_cast<std::size_t>(i), setup.spacing);
+  const double coefficient =
+      0.1 * setup.biot_coefficient * setup.biot_coefficient * simulation.time_step() / kDensity;
+  const Eigen::VectorXd stabilised = stabilisation * checkerboard;
+  const Eigen::VectorXd laplacian = -coefficient * (ltilde * checkerboard);
+  int checked = 0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    // The top row has no cells above it (a face, not a mirror): left out.
+    if (nodes.position[1][static_cast<std::size_t>(i)] > setup.height - 1e-9) continue;
+    EXPECT_NEAR(stabilised[i], laplacian[i], 1e-12 * scale) << i;
+    EXPECT_GT(stabilised[i] * checkerboard[i], 0.0) << i;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 9 * 20);
+}
+
+// Seeds p_w = A (-1)^(i+j) (A = 1 kPa, the drained top at 0) in an unloaded, nearly undrained
+// block and returns p_w / (A (-1)^(i+j)) after `steps` steps, for every node at least 8 dx below
+// the drained top; also the largest speed.
+struct CheckerboardDecay {
+  std::vector<double> ratio;
+  std::vector<double> height;
+  double largest_speed = 0.0;
+  double per_step = 0.0;  // predicted decay factor g
+};
+
+CheckerboardDecay run_seeded_checkerboard(double theta, int steps) {
+  ColumnSetup setup;
+  setup.width = 2.0;
+  setup.hydraulic_conductivity = 1e-12;
+  setup.load = 0.0;
+  setup.stabilisation = theta;
+  Simulation simulation(column_case(setup));
+  const PointCloud& nodes = simulation.nodes().sph_nodes;
+  const int pore = simulation.model().pore_pressure_field();
+  const double amplitude = 1e3;
+  State& state = simulation.state();
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    state.fields(pore, i) = nodes.position[1][i] > setup.height - 1e-9
+                                ? 0.0
+                                : amplitude * checkerboard_sign(nodes, i, setup.spacing);
+  const double dt = simulation.time_step();
+  for (int k = 0; k < steps; ++k)
+    simulation.step().advance(state, dt);
+  CheckerboardDecay result;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes.position[1][i] > setup.height - 8.0 * setup.spacing + 1e-9) continue;
+    double speed = 0.0;
+    for (int a = 0; a < 2; ++a)
+      speed += std::pow(state.fields(simulation.model().velocity_field(a), i), 2);
+    result.largest_speed = std::max(result.largest_speed, std::sqrt(speed));
+    result.ratio.push_back(state.fields(pore, i) /
+                           (amplitude * checkerboard_sign(nodes, i, setup.spacing)));
+    result.height.push_back(nodes.position[1][i]);
+  }
+  // Per unit V_eff on the checkerboard: storage s = 1/(Q dt), projection P = alpha^2 dt/rho lambda,
+  // seepage K = k_bar lambda, stabilisation theta P (eq. 6.3 with S):
+  //   (s + P + K + theta P) p^{n+1} = (s + P) p^n.
+  const double lambda = laplacian_checkerboard_rate(
+      Kernel(KernelType::CubicSpline, 2), 0.75 * setup.spacing, setup.spacing, 2,
+      simulation.pressure_projection()->laplacian().scale);
+  const double alpha = setup.biot_coefficient;
+  const double s = 1.0 / (biot_modulus(setup) * dt);
+  const double p = alpha * alpha * dt / kDensity * lambda;
+  const double k = setup.hydraulic_conductivity / (kFluidDensity * kGravity) * lambda;
+  result.per_step = (s + p) / (s + p + k + theta * p);
+  return result;
+}
+
+TEST(SaturatedColumn, SeededPoreCheckerboardDecaysAtThePredictedRate) {
+  // The checkerboard is invisible to the cross-set gradient of the momentum equation and to the
+  // collocated gradient of the velocity correction, so it moves nothing away from the top, and
+  // p_w obeys the scalar recursion of run_seeded_checkerboard: with theta = 0.1
+  // it decays by g = 1/(1 + theta) ~ 0.909 per step, g^20 = 0.149. Without the stabilisation it
+  // decays by the seepage alone: g ~ 1 - 1e-13, the mode stays (the open problem of §6.5).
+  // Tolerance 1e-3 relative: the drained top (p = 0, not the checkerboard) perturbs the
+  // recursion near it (measured after 20 steps: 1.7 % at 4 dx, 3.8e-3 at 7 dx, 3.9e-4 at 8 dx,
+  // 1e-9 at 16 dx below the top), so nodes within 8 dx of the top are left out.
+  const int steps = 20;
+  const CheckerboardDecay stabilised = run_seeded_checkerboard(0.1, steps);
+  EXPECT_NEAR(stabilised.per_step, 1.0 / 1.1, 1e-3);
+  const double expected = std::pow(stabilised.per_step, steps);
+  ASSERT_EQ(stabilised.ratio.size(), 9u * 13u);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < stabilised.ratio.size(); ++i) {
+    const double error = std::abs(stabilised.ratio[i] / expected - 1.0);
+    worst = std::max(worst, error);
+  }
+  EXPECT_LE(worst, 1e-3);
+  RecordProperty("stabilised_worst_relative_error", std::to_string(worst));
+
+  // Moves (almost) nothing: a mode the momentum equation saw would drive speeds of order
+  // A / (rho c_p) = 6e-3 m/s; what reaches these nodes is the wave radiated from the drained top
+  // (measured 1.2e-6 m/s), so 1e-5 m/s.
+  EXPECT_LE(stabilised.largest_speed, 1e-5);
+  RecordProperty("largest_speed", std::to_string(stabilised.largest_speed));
+
+  const CheckerboardDecay plain = run_seeded_checkerboard(0.0, steps);
+  for (double ratio : plain.ratio)
+    EXPECT_GT(ratio, 0.999);
+}
+
+TEST(SaturatedColumn, StabilisationLeavesTheUndrainedColumnUnchanged) {
+  // The loaded undrained column carries p_w(y) only, on which S vanishes exactly: theta = 0 and
+  // theta = 0.3 give the same pressures up to the solver tolerance (1e-10 relative residual
+  // times the conditioning; 1e-6 q as for the preconditioners).
+  ColumnSetup setup;
+  setup.hydraulic_conductivity = 1e-12;
+  setup.end = 0.3;
+  setup.stabilisation = 0.0;
+  Simulation plain(column_case(setup));
+  setup.stabilisation = 0.3;  // the default
+  Simulation stabilised(column_case(setup));
+  ASSERT_EQ(plain.run(), RunStatus::Completed) << plain.message();
+  ASSERT_EQ(stabilised.run(), RunStatus::Completed) << stabilised.message();
+  const auto a = pressures(plain), b = pressures(stabilised);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    EXPECT_NEAR(a[i].pressure, b[i].pressure, 1e-6 * setup.load) << "y = " << a[i].y;
 }
 
 }  // namespace

@@ -229,3 +229,38 @@ TEST(Laplacian, MirrorPlanesHalveVolumesAndKeepTheMatrixSymmetric) {
 
 }  // namespace
 }  // namespace rktsph
+
+namespace rktsph {
+namespace {
+
+TEST(Laplacian, CheckerboardRateIsTheEigenvalueOnTheLattice) {
+  // The checkerboard (-1)^(i+j) is an eigenvector of L on complete stencils with eigenvalue
+  // -laplacian_checkerboard_rate (it sets the p_w checkerboard stabilisation, theory §6.6). At
+  // h = 0.75 dx only the four axis neighbours (opposite sign) count: rate = 8 c dx^2 |F(dx)|,
+  // F(r) = 2 r W'(r)/(r^2 + eta^2): 7.68/dx^2 (the 5-point stencil has 8/dx^2).
+  const double dx = 0.25;
+  const NodeSets nodes = rectangle_lattice(3.0, 2.0, dx);
+  const OperatorOptions options = options_for(2, 0.75 * dx);
+  const LaplacianMatrix laplacian = laplacian_on(nodes, options);
+  const double rate =
+      laplacian_checkerboard_rate(options.kernel, 0.75 * dx, dx, 2, laplacian.scale);
+  const double h = 0.75 * dx, eta = 0.1 * h;
+  const double factor = 2.0 * dx * options.kernel.derivative(dx, h) / (dx * dx + eta * eta);
+  EXPECT_NEAR(rate, 8.0 * laplacian.scale * dx * dx * std::abs(factor), 1e-12 * rate);
+  EXPECT_NEAR(rate * dx * dx, 7.679, 1e-3);  // measured; the 5-point stencil has 8
+  const Eigen::VectorXd result = apply_laplacian(laplacian, nodes.sph_nodes, [dx](const auto& x) {
+    return (std::lround(x[0] / dx) + std::lround(x[1] / dx)) % 2 == 0 ? 1.0 : -1.0;
+  });
+  int checked = 0;
+  for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i) {
+    const auto x = nodes.sph_nodes.point(i);
+    if (!has_full_stencil(x, {3.0, 2.0, 0}, 2, dx, false)) continue;
+    const double sign = (std::lround(x[0] / dx) + std::lround(x[1] / dx)) % 2 == 0 ? 1.0 : -1.0;
+    EXPECT_NEAR(result[static_cast<Eigen::Index>(i)], -rate * sign, 1e-10 * rate) << "node " << i;
+    ++checked;
+  }
+  EXPECT_EQ(checked, (13 - 2) * (9 - 2));
+}
+
+}  // namespace
+}  // namespace rktsph

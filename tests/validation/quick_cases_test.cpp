@@ -17,10 +17,6 @@ class QuickValidationSlow : public testing::TestWithParam<std::string> {};
 // while `rktsph validate` keeps reporting them as failed. Each entry names the problem.
 const std::map<std::string, std::string>& known_open_problems() {
   static const std::map<std::string, std::string> problems = {
-      {"vpw-strip-footing-elastic",
-       "open problem: a pore-pressure checkerboard under the footing edge (7.6 % of max p_w) "
-       "that no gradient operator sees at h = 0.75 dx; the hourglass filter no longer acts on "
-       "p_w because that drained undrained soil. See docs/theory.md §6.5."},
       {"slope-elastic",
        "open problem: residual_velocity_ratio 0.045 (target 1e-3): the free crest forces the "
        "checkerboard velocity that no stress sees, and the hourglass filter, which removes it, "

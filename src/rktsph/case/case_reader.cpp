@@ -457,7 +457,7 @@ void CaseReader::read_pore_fluid(const YamlNode& node) {
   const YamlMap map(node);
   map.allow_only({"bulk_modulus", "density", "porosity", "hydraulic_conductivity", "gravity",
                   "biot_coefficient", "projection_beta", "preconditioner", "solver_tolerance",
-                  "solver_max_iterations", "laplacian_scale"});
+                  "solver_max_iterations", "laplacian_scale", "checkerboard_stabilisation"});
   PoreFluidSpec fluid;
   fluid.where = map.where();
   fluid.bulk_modulus = to_number(map.require("bulk_modulus"), NumberRange::positive());
@@ -493,6 +493,9 @@ void CaseReader::read_pore_fluid(const YamlNode& node) {
   }
   if (const YamlNode* scale = map.find("laplacian_scale")) {
     fluid.laplacian_scale = to_number(*scale, NumberRange::positive());
+  }
+  if (const YamlNode* theta = map.find("checkerboard_stabilisation")) {
+    fluid.checkerboard_stabilisation = to_number(*theta, NumberRange::non_negative());
   }
   out_.pore_fluid = fluid;
 }
@@ -1047,6 +1050,8 @@ std::string write_case_yaml(const CaseDescription& description) {
       out << YAML::Key << "solver_max_iterations" << YAML::Value << fluid->solver_max_iterations;
     if (fluid->laplacian_scale > 0)
       out << YAML::Key << "laplacian_scale" << YAML::Value << number(fluid->laplacian_scale);
+    out << YAML::Key << "checkerboard_stabilisation" << YAML::Value
+        << number(fluid->checkerboard_stabilisation);
     out << YAML::EndMap;
   }
   out << YAML::Key << "time" << YAML::Value << YAML::BeginMap;

@@ -36,6 +36,7 @@ PressureProjection::PressureProjection(const SaturatedVpw& model, const NodeSets
       permeability_(model.fluid().permeability),
       beta_(fluid.projection_beta),
       tolerance_(fluid.solver_tolerance),
+      checkerboard_theta_(fluid.checkerboard_stabilisation),
       max_iterations_(fluid.solver_max_iterations),
       incomplete_cholesky_(fluid.incomplete_cholesky),
       solvers_(std::make_unique<Solvers>()) {
@@ -51,6 +52,8 @@ PressureProjection::PressureProjection(const SaturatedVpw& model, const NodeSets
   laplacian_ =
       build_laplacian(nodes.sph_nodes, cells, options, nodes.spacing, fluid.laplacian_scale);
   statistics_.laplacian_scale = laplacian_.scale;
+  checkerboard_rate_ = laplacian_checkerboard_rate(options.kernel, options.smoothing_length,
+                                                   nodes.spacing, d, laplacian_.scale);
   density_.resize(n);
   for (std::size_t i = 0; i < n; ++i)
     density_[i] = model.material(nodes.node_material[i]).density();
@@ -62,6 +65,8 @@ PressureProjection::PressureProjection(const SaturatedVpw& model, const NodeSets
   rhs_.resize(static_cast<Eigen::Index>(n));
   pressure_.resize(static_cast<Eigen::Index>(n));
   previous_.resize(static_cast<Eigen::Index>(n));
+  older_.resize(static_cast<Eigen::Index>(n));
+  guess_.resize(static_cast<Eigen::Index>(n));
   scratch_.resize(static_cast<Eigen::Index>(n));
   boundary_values_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
   velocity_ = FieldArray(d, n);
@@ -100,6 +105,47 @@ void PressureProjection::assemble(double dt) {
       if (!row_drained && column_drained) coupling.emplace_back(i, j, system_value);
     }
   }
+  // Checkerboard stabilisation (docs/theory.md §6.6, eq. 6.5): w_c b_c b_c^T per lattice cell, b_c
+  // the twist
+  // (+1, -1, -1, +1) of its corners. The cells are those of the stress points (all four corners
+  // are nodes); mirrored cells are left out, which is the V_eff weighting of Ltilde.
+  std::vector<Eigen::Triplet<double>> stabilisation;
+  if (nodes_.dimension == 2 && checkerboard_theta_ > 0.0) {
+    for (const LatticeIndex& corner : nodes_.stress_point_index) {
+      std::int32_t node[4];
+      double sign[4];
+      double density = 0.0, volume = 0.0;
+      bool complete = true;
+      for (int c = 0; c < 4; ++c) {
+        const int di = c & 1, dj = c >> 1;
+        node[c] = nodes_.node_at({corner[0] + di, corner[1] + dj, corner[2]});
+        sign[c] = (di + dj) % 2 == 0 ? 1.0 : -1.0;
+        if (node[c] < 0) {
+          complete = false;
+          break;
+        }
+        density += 0.25 * density_[static_cast<std::size_t>(node[c])];
+        volume += 0.25 * nodes_.sph_nodes.volume[static_cast<std::size_t>(node[c])];
+      }
+      if (!complete) continue;
+      const double weight =
+          checkerboard_theta_ * alpha_ * alpha_ * dt / density * volume * checkerboard_rate_ / 16.0;
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) {
+          const double value = weight * sign[a] * sign[b];
+          const auto i = static_cast<std::size_t>(node[a]), j = static_cast<std::size_t>(node[b]);
+          stabilisation.emplace_back(node[a], node[b], value);
+          if (drained_[i]) continue;  // drained rows keep only their diagonal
+          if (!drained_[j])
+            system.emplace_back(node[a], node[b], value);
+          else
+            coupling.emplace_back(node[a], node[b], value);
+        }
+    }
+  }
+  stabilisation_.resize(n, n);
+  stabilisation_.setFromTriplets(stabilisation.begin(), stabilisation.end());
+
   for (Eigen::Index i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     const double storage = laplacian_.effective_volume[k] * storage_ / dt;
@@ -137,12 +183,12 @@ void PressureProjection::solve(double time) {
   double error;
   bool converged;
   if (incomplete_cholesky_) {
-    pressure_ = s.cholesky.solveWithGuess(rhs_, previous_);
+    pressure_ = s.cholesky.solveWithGuess(rhs_, guess_);
     iterations = s.cholesky.iterations();
     error = s.cholesky.error();
     converged = s.cholesky.info() == Eigen::Success;
   } else {
-    pressure_ = s.jacobi.solveWithGuess(rhs_, previous_);
+    pressure_ = s.jacobi.solveWithGuess(rhs_, guess_);
     iterations = s.jacobi.iterations();
     error = s.jacobi.error();
     converged = s.jacobi.info() == Eigen::Success;
@@ -195,7 +241,15 @@ void PressureProjection::project(State& state, double time, double dt) {
       rhs_[node] =
           laplacian_.effective_volume[static_cast<std::size_t>(node)] / dt * boundary_values_[node];
   }
+  // Initial guess: p_w^n + (p_w^n - p_w^{n-1}). With a relative tolerance, a guess that is O(dt^2)
+  // rather than O(dt) off saves the iterations that only recover the trend (theory §6.4).
+  if (has_older_)
+    guess_ = 2.0 * previous_ - older_;
+  else
+    guess_ = previous_;
   solve(time);
+  older_ = previous_;
+  has_older_ = true;
 
   // Velocity correction, eq. 6.4.
   for (std::size_t i = 0; i < n; ++i)

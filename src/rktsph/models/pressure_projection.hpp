@@ -5,6 +5,14 @@
 // by preconditioned conjugate gradients (warm start from p^n), then correct the velocity,
 //   v^{n+1} = v* - (alpha dt/rho) grad(p^{n+1} - beta p^n),                          (6.4)
 // and impose the boundary conditions again. The matrix is assembled once (dt is constant).
+//
+// In 2D the left-hand side also carries the checkerboard stabilisation S p^{n+1}
+// (docs/theory.md §6.6): S = sum over lattice cells c of w_c b_c b_c^T, b_c = (+1, -1, -1, +1) on
+// the cell's corners (the discrete twist dx^2 d2p/dxdy), w_c = theta (alpha^2 dt/rho_c) V lambda/16
+// with lambda the checkerboard rate of the Laplacian. S is symmetric positive semi-definite and
+// conservative (rows sum to zero), vanishes on every field f(x) + g(y) (linear fields, the 1D
+// drained-face boundary layer, the undrained column), and removes the p_w checkerboard, which
+// both gradient operators miss, at the rate theta/(1 + theta) per step in the undrained limit.
 #pragma once
 
 #include <Eigen/IterativeLinearSolvers>
@@ -44,6 +52,9 @@ class PressureProjection final : public StepProjection {
   const LaplacianMatrix& laplacian() const { return laplacian_; }
   /// The assembled system matrix (Dirichlet rows decoupled), for tests.
   const Eigen::SparseMatrix<double>& system() const { return system_; }
+  /// The checkerboard stabilisation S (all rows and columns, before the drained rows are
+  /// decoupled); empty unless 2D with theta > 0.
+  const Eigen::SparseMatrix<double>& stabilisation() const { return stabilisation_; }
 
  private:
   void assemble(double dt);
@@ -52,7 +63,7 @@ class PressureProjection final : public StepProjection {
   const SaturatedVpw& model_;
   const NodeSets& nodes_;
   const BoundaryConditions& conditions_;
-  double alpha_, storage_, permeability_, beta_, tolerance_;
+  double alpha_, storage_, permeability_, beta_, tolerance_, checkerboard_theta_;
   long max_iterations_;
   bool incomplete_cholesky_;
   double assembled_dt_ = 0.0;
@@ -62,6 +73,8 @@ class PressureProjection final : public StepProjection {
   Eigen::SparseMatrix<double> system_;            // K, drained rows and columns decoupled
   Eigen::SparseMatrix<double> projection_term_;   // (alpha^2 dt / rho) Ltilde, for the RHS
   Eigen::SparseMatrix<double> drained_coupling_;  // K(free rows, drained columns)
+  Eigen::SparseMatrix<double> stabilisation_;     // S, theory §6.6
+  double checkerboard_rate_ = 0.0;                // -lambda of L on the checkerboard
   std::vector<char> drained_;
   std::vector<double> density_;
 
@@ -69,6 +82,9 @@ class PressureProjection final : public StepProjection {
   std::unique_ptr<Solvers> solvers_;
 
   Eigen::VectorXd rhs_, pressure_, previous_, boundary_values_, scratch_;
+  // Initial guess of the solve: p_w extrapolated linearly from the last two steps (theory §6.4).
+  Eigen::VectorXd older_, guess_;
+  bool has_older_ = false;
   FieldArray velocity_, velocity_gradient_, pressure_increment_, pressure_gradient_;
   std::vector<Parity> velocity_parity_;
   SolverStatistics statistics_;

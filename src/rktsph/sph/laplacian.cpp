@@ -12,24 +12,45 @@ double pair_factor(const Kernel& kernel, double r, double h) {
   return 2.0 * r * kernel.derivative(r, h) / (r * r + eta * eta);
 }
 
+// Sum over the full lattice stencil of a node, I excluded, of V_J pair_factor(r_IJ) times
+// weight(lattice offset, r_IJ).
+template <typename Weight>
+double lattice_stencil_sum(const Kernel& kernel, double smoothing_length, double spacing,
+                           int dimension, Weight weight) {
+  const double support = kernel.support_radius(smoothing_length);
+  const int reach = static_cast<int>(std::ceil(support / spacing));
+  const int reach_y = dimension >= 2 ? reach : 0, reach_z = dimension >= 3 ? reach : 0;
+  const double volume = std::pow(spacing, dimension);
+  double sum = 0.0;
+  for (int i = -reach; i <= reach; ++i)
+    for (int j = -reach_y; j <= reach_y; ++j)
+      for (int k = -reach_z; k <= reach_z; ++k) {
+        if (i == 0 && j == 0 && k == 0) continue;
+        const double r = spacing * std::sqrt(static_cast<double>(i * i + j * j + k * k));
+        if (r >= support) continue;
+        sum += volume * pair_factor(kernel, r, smoothing_length) * weight(i + j + k, r);
+      }
+  return sum;
+}
+
 }  // namespace
 
 double laplacian_consistency_scale(const Kernel& kernel, double smoothing_length, double spacing,
                                    int dimension) {
   // L(|x - x_I|^2) at I = -sum_J V_J pair_factor r_IJ^2 over the full lattice stencil; exact 2d.
-  const double support = kernel.support_radius(smoothing_length);
-  const int reach = static_cast<int>(std::ceil(support / spacing));
-  const double volume = std::pow(spacing, dimension);
-  double sum = 0.0;
-  for (int i = -reach; i <= reach; ++i)
-    for (int j = (dimension >= 2 ? -reach : 0); j <= (dimension >= 2 ? reach : 0); ++j)
-      for (int k = (dimension >= 3 ? -reach : 0); k <= (dimension >= 3 ? reach : 0); ++k) {
-        if (i == 0 && j == 0 && k == 0) continue;
-        const double r = spacing * std::sqrt(static_cast<double>(i * i + j * j + k * k));
-        if (r >= support) continue;
-        sum -= volume * pair_factor(kernel, r, smoothing_length) * r * r;
-      }
+  const double sum = -lattice_stencil_sum(kernel, smoothing_length, spacing, dimension,
+                                          [](int, double r) { return r * r; });
   return 2.0 * dimension / sum;
+}
+
+double laplacian_checkerboard_rate(const Kernel& kernel, double smoothing_length, double spacing,
+                                   int dimension, double scale) {
+  // -L c / c on the checkerboard c = (-1)^(i+j+k): sum_J V_J pair_factor (c_J - c_I) / c_I.
+  const double sum =
+      -lattice_stencil_sum(kernel, smoothing_length, spacing, dimension, [](int offset, double) {
+        return offset % 2 == 0 ? 0.0 : 2.0;  // 1 - (-1)^offset
+      });
+  return scale * sum;
 }
 
 LaplacianMatrix build_laplacian(const PointCloud& points, const CellList& cells,

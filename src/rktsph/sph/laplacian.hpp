@@ -29,6 +29,12 @@ struct LaplacianMatrix {
 double laplacian_consistency_scale(const Kernel& kernel, double smoothing_length, double spacing,
                                    int dimension);
 
+/// -lambda, lambda the eigenvalue of L (scale included) for the lattice checkerboard (-1)^(i+j+k)
+/// on a complete stencil: c sum_J V_J |pair factor| (1 - (-1)^(i_J+j_J+k_J)). Sets the strength of
+/// the pore-pressure checkerboard stabilisation (docs/theory.md §6.6).
+double laplacian_checkerboard_rate(const Kernel& kernel, double smoothing_length, double spacing,
+                                   int dimension, double scale);
+
 /// Assembles Ltilde on `points` (their own neighbours, mirror images included). `scale` <= 0 means
 /// the consistency scale above.
 LaplacianMatrix build_laplacian(const PointCloud& points, const CellList& cells,
