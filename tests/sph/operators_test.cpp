@@ -300,6 +300,63 @@ TEST(MirrorImages, NodesOnASymmetryPlaneGetFullStencilsWithParity) {
   EXPECT_EQ(checked_on_plane, 21 - 2);
 }
 
+// The filter's tables (first order at h = 1.3 dx, with a mirror plane so that reflected rows are
+// exercised): sharing the weights of equal stencils and applying them to node-major values must
+// give apply_operator's interpolation to 1e-12 of the O(1) field (rows that share take the first
+// row's weights, equal to 1e-13 of the largest weight: ~20 terms of |f| <= 1 give <= 1e-12 with
+// the reordered sum), and the interior rows must collapse onto a few stencils.
+TEST(SharedWeights, InterleavedApplyMatchesApplyOperatorAndInteriorRowsShareOneStencil) {
+  const NodeSets nodes = rectangle_lattice(1.0, 0.5, 0.05);
+  OperatorOptions options = options_for(2, 1.3 * 0.05, 1);
+  options.mirrors = {MirrorPlane{1, 0.0}};
+  const CellList cells(nodes.stress_points,
+                       options.kernel.support_radius(options.smoothing_length));
+  WeightTable table = build_cross_operator(nodes.sph_nodes, cells, options);
+  ASSERT_TRUE(table.has_reflections);
+  drop_gradients(table);
+  WeightTable shared = table;
+  share_row_weights(shared);
+  ASSERT_EQ(shared.weight_start.size(), table.rows());
+  EXPECT_LT(shared.interpolation.size() * 4, table.interpolation.size());
+  EXPECT_EQ(shared.reflection.size(), shared.interpolation.size());
+  // Re-sharing is a no-op; a table with gradients cannot be shared.
+  const std::size_t pool = shared.interpolation.size();
+  share_row_weights(shared);
+  EXPECT_EQ(shared.interpolation.size(), pool);
+  WeightTable with_gradient = build_cross_operator(nodes.sph_nodes, cells, options);
+  EXPECT_THROW(share_row_weights(with_gradient), std::invalid_argument);
+
+  // Two fields with opposite parity under the y-mirror: one even, one odd in y.
+  std::mt19937 generator(3);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  const std::size_t sources = nodes.stress_points.size(), targets = nodes.sph_nodes.size();
+  FieldArray in(2, sources);
+  std::vector<double> interleaved(2 * sources);
+  for (std::size_t j = 0; j < sources; ++j)
+    for (int f = 0; f < 2; ++f) {
+      in(f, j) = uniform(generator);
+      interleaved[2 * j + static_cast<std::size_t>(f)] = in(f, j);
+    }
+  const Parity parity[] = {kEven, vector_parity(1)};
+  FieldArray expected(2, targets);
+  apply_operator(table, in, parity, &expected, nullptr);
+  std::vector<double> out(2 * targets);
+  apply_interpolation_interleaved(shared, interleaved, parity, out);
+  std::size_t reflected_rows = 0;
+  for (std::size_t i = 0; i < targets; ++i) {
+    reflected_rows += shared.row_reflects[i];
+    for (int f = 0; f < 2; ++f)
+      EXPECT_NEAR(out[2 * i + static_cast<std::size_t>(f)], expected(f, i), 1e-12) << i;
+  }
+  EXPECT_GT(reflected_rows, 0u);
+  EXPECT_LT(reflected_rows, targets);
+  // The unshared table through the interleaved path gives the same sums, term by term.
+  apply_interpolation_interleaved(table, interleaved, parity, out);
+  for (std::size_t i = 0; i < targets; ++i)
+    for (int f = 0; f < 2; ++f)
+      EXPECT_EQ(out[2 * i + static_cast<std::size_t>(f)], expected(f, i)) << i;
+}
+
 TEST(Degeneracy, EmptyAndSingleSourceStencilsAreReportedWithFiniteWeights) {
   WeightTable table;
   table.dimension = 2;

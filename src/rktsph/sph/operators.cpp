@@ -5,7 +5,12 @@
 #include <bit>
 #include <cassert>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
+#include <string>
+#include <tuple>
+#include <type_traits>
+#include <unordered_map>
 
 namespace rktsph {
 
@@ -274,15 +279,18 @@ void interpolate_rows(const WeightTable& table, const Inputs& input, int runtime
   const int fields = FieldCount > 0 ? FieldCount : runtime_fields;
   const auto rows = static_cast<std::int64_t>(table.rows());
   const std::int64_t* row_start = table.row_start.data();
+  // Shared weights (share_row_weights): row i's weights start at weight_start[i] in the pool.
+  const std::int64_t* weight_start =
+      table.weight_start.empty() ? row_start : table.weight_start.data();
   const std::int32_t* source = table.source.data();
-  const std::uint8_t* reflection = table.reflection.data();
-  const double* weight = table.interpolation.data();
   double* output[kMaxFields];
   for (int f = 0; f < fields; ++f)
     output[f] = out.field(f);
 #pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
   for (std::int64_t i = 0; i < rows; ++i) {
     double value[kMaxFields] = {};
+    const double* weight = table.interpolation.data() + (weight_start[i] - row_start[i]);
+    const std::uint8_t* reflection = table.reflection.data() + (weight_start[i] - row_start[i]);
     for (std::int64_t k = row_start[i]; k < row_start[i + 1]; ++k) {
       const std::int32_t j = source[k];
       const double w = weight[k];
@@ -340,42 +348,89 @@ void differentiate_rows(const WeightTable& table, const Inputs& input, int runti
   }
 }
 
+// interpolate_rows on interleaved values (apply_interpolation_interleaved). Rows without a
+// reflected entry (all interior rows) skip the parity signs when the table says which they are.
+template <int FieldCount, bool Reflect>
+void interpolate_interleaved_rows(const WeightTable& table, const double* in, int runtime_fields,
+                                  const ParitySigns& signs, double* out) {
+  const int fields = FieldCount > 0 ? FieldCount : runtime_fields;
+  const auto rows = static_cast<std::int64_t>(table.rows());
+  const std::int64_t* row_start = table.row_start.data();
+  const std::int64_t* weight_start =
+      table.weight_start.empty() ? row_start : table.weight_start.data();
+  const std::uint8_t* row_reflects =
+      table.row_reflects.empty() ? nullptr : table.row_reflects.data();
+  const std::int32_t* source = table.source.data();
+#pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
+  for (std::int64_t i = 0; i < rows; ++i) {
+    double value[kMaxFields] = {};
+    const double* weight = table.interpolation.data() + (weight_start[i] - row_start[i]);
+    const std::uint8_t* reflection = table.reflection.data() + (weight_start[i] - row_start[i]);
+    if (Reflect && (row_reflects == nullptr || row_reflects[i])) {
+      for (std::int64_t k = row_start[i]; k < row_start[i + 1]; ++k) {
+        const double* v = in + static_cast<std::int64_t>(source[k]) * fields;
+        const double w = weight[k];
+        const double* sign = signs.sign + reflection[k];
+        for (int f = 0; f < fields; ++f)
+          value[f] += w * sign[f * 8] * v[f];
+      }
+    } else {
+      for (std::int64_t k = row_start[i]; k < row_start[i + 1]; ++k) {
+        const double* v = in + static_cast<std::int64_t>(source[k]) * fields;
+        const double w = weight[k];
+        for (int f = 0; f < fields; ++f)
+          value[f] += w * v[f];
+      }
+    }
+    double* o = out + i * fields;
+    for (int f = 0; f < fields; ++f)
+      o[f] = value[f];
+  }
+}
+
+// Calls call(std::integral_constant<int, N>) with N = fields for the common field counts (the
+// field loops of the kernels then unroll) and N = 0 (read at run time) otherwise.
+template <typename Call>
+void with_field_count(int fields, Call call) {
+  switch (fields) {
+    case 1:
+      return call(std::integral_constant<int, 1>{});
+    case 2:
+      return call(std::integral_constant<int, 2>{});
+    case 5:
+      return call(std::integral_constant<int, 5>{});
+    case 6:
+      return call(std::integral_constant<int, 6>{});
+    case 7:
+      return call(std::integral_constant<int, 7>{});
+    default:
+      return call(std::integral_constant<int, 0>{});
+  }
+}
+
+template <bool Reflect>
+void dispatch_interleaved(const WeightTable& table, const double* in, int fields,
+                          const ParitySigns& signs, double* out) {
+  with_field_count(fields, [&](auto count) {
+    interpolate_interleaved_rows<decltype(count)::value, Reflect>(table, in, fields, signs, out);
+  });
+}
+
 template <bool Reflect>
 void dispatch_interpolation(const WeightTable& table, const Inputs& input, int fields,
                             const ParitySigns& signs, FieldArray& out) {
-  switch (fields) {
-    case 1:
-      return interpolate_rows<1, Reflect>(table, input, fields, signs, out);
-    case 2:
-      return interpolate_rows<2, Reflect>(table, input, fields, signs, out);
-    case 5:
-      return interpolate_rows<5, Reflect>(table, input, fields, signs, out);
-    case 6:
-      return interpolate_rows<6, Reflect>(table, input, fields, signs, out);
-    case 7:
-      return interpolate_rows<7, Reflect>(table, input, fields, signs, out);
-    default:
-      return interpolate_rows<0, Reflect>(table, input, fields, signs, out);
-  }
+  with_field_count(fields, [&](auto count) {
+    interpolate_rows<decltype(count)::value, Reflect>(table, input, fields, signs, out);
+  });
 }
 
 template <int D, bool Reflect>
 void dispatch_gradient(const WeightTable& table, const Inputs& input, int fields,
                        const ParitySigns& signs, FieldArray* values, FieldArray& gradient) {
-  switch (fields) {
-    case 1:
-      return differentiate_rows<1, D, Reflect>(table, input, fields, signs, values, gradient);
-    case 2:
-      return differentiate_rows<2, D, Reflect>(table, input, fields, signs, values, gradient);
-    case 5:
-      return differentiate_rows<5, D, Reflect>(table, input, fields, signs, values, gradient);
-    case 6:
-      return differentiate_rows<6, D, Reflect>(table, input, fields, signs, values, gradient);
-    case 7:
-      return differentiate_rows<7, D, Reflect>(table, input, fields, signs, values, gradient);
-    default:
-      return differentiate_rows<0, D, Reflect>(table, input, fields, signs, values, gradient);
-  }
+  with_field_count(fields, [&](auto count) {
+    differentiate_rows<decltype(count)::value, D, Reflect>(table, input, fields, signs, values,
+                                                           gradient);
+  });
 }
 
 template <bool Reflect>
@@ -397,6 +452,75 @@ void drop_gradients(WeightTable& table) {
   for (auto& g : table.gradient)
     std::vector<double>().swap(g);
   table.has_gradient = false;
+}
+
+void apply_interpolation_interleaved(const WeightTable& table, std::span<const double> in,
+                                     std::span<const Parity> parity, std::span<double> out) {
+  const auto fields = static_cast<int>(parity.size());
+  if (fields < 1 || fields > kMaxFields)
+    throw std::invalid_argument("apply_interpolation_interleaved: bad field count");
+  if (out.size() < table.rows() * static_cast<std::size_t>(fields))
+    throw std::invalid_argument("apply_interpolation_interleaved: output smaller than the table");
+  const ParitySigns signs = parity_signs(parity);
+  if (table.has_reflections)
+    dispatch_interleaved<true>(table, in.data(), fields, signs, out.data());
+  else
+    dispatch_interleaved<false>(table, in.data(), fields, signs, out.data());
+}
+
+void share_row_weights(WeightTable& table) {
+  if (table.has_gradient)
+    throw std::invalid_argument("share_row_weights: the table still holds gradient weights");
+  if (!table.weight_start.empty()) return;  // already shared
+  const std::size_t rows = table.rows();
+  std::vector<double> pool;
+  std::vector<std::uint8_t> pool_reflection;
+  std::vector<std::int64_t> start(rows);
+  table.row_reflects.assign(rows, 0);
+  std::unordered_map<std::string, std::int64_t> known;  // quantised stencil -> pool offset
+  std::vector<std::int64_t> order;
+  std::string key;
+  for (std::size_t i = 0; i < rows; ++i) {
+    const std::int64_t begin = table.row_start[i], end = table.row_start[i + 1];
+    order.resize(static_cast<std::size_t>(end - begin));
+    std::iota(order.begin(), order.end(), begin);
+    std::sort(order.begin(), order.end(), [&](std::int64_t a, std::int64_t b) {
+      return std::tie(table.source[a], table.reflection[a]) <
+             std::tie(table.source[b], table.reflection[b]);
+    });
+    // Reorder the row's entries in place by source.
+    std::vector<std::int32_t> source(order.size());
+    std::vector<std::uint8_t> reflection(order.size());
+    std::vector<double> weight(order.size());
+    double largest = 0.0;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      source[k] = table.source[order[k]];
+      reflection[k] = table.reflection[order[k]];
+      weight[k] = table.interpolation[order[k]];
+      largest = std::max(largest, std::abs(weight[k]));
+    }
+    std::copy(source.begin(), source.end(), table.source.begin() + begin);
+    // Key: the reflection bits and the weights rounded to 1e-13 of the largest one. Rows that
+    // round alike differ by less than that and share the first one's weights.
+    key.clear();
+    const double quantum = 1e-13 * (largest > 0.0 ? largest : 1.0);
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const auto rounded = static_cast<std::int64_t>(std::llround(weight[k] / quantum));
+      key.append(reinterpret_cast<const char*>(&rounded), sizeof rounded);
+      key.push_back(static_cast<char>(reflection[k]));
+    }
+    const auto [found, inserted] = known.try_emplace(key, static_cast<std::int64_t>(pool.size()));
+    if (inserted) {
+      pool.insert(pool.end(), weight.begin(), weight.end());
+      pool_reflection.insert(pool_reflection.end(), reflection.begin(), reflection.end());
+    }
+    start[i] = found->second;
+    table.row_reflects[i] =
+        std::any_of(reflection.begin(), reflection.end(), [](std::uint8_t r) { return r != 0; });
+  }
+  table.interpolation = std::move(pool);
+  table.reflection = std::move(pool_reflection);
+  table.weight_start = std::move(start);
 }
 
 void apply_operator(const WeightTable& table, const FieldArray& in, std::span<const Parity> parity,

@@ -38,6 +38,11 @@ struct WeightTable {
   std::array<std::vector<double>, 3> gradient;
   bool has_reflections = false;
   bool has_gradient = true;  ///< false once drop_gradients() freed them (interpolation-only use)
+  /// Empty, or (after share_row_weights) where each row's weights and reflection bits start in
+  /// `interpolation` and `reflection`, which are then pools shared by rows with equal stencils.
+  std::vector<std::int64_t> weight_start;
+  /// Empty, or (after share_row_weights) 1 for the rows with a reflected entry.
+  std::vector<std::uint8_t> row_reflects;
 
   std::size_t rows() const { return row_start.empty() ? 0 : row_start.size() - 1; }
   std::size_t entries() const { return source.size(); }
@@ -121,11 +126,24 @@ WeightTable build_collocated_gradient(const PointCloud& points, const CellList& 
 /// Frees the gradient weights of a table used only for interpolation (the hourglass filter).
 void drop_gradients(WeightTable& table);
 
+/// For an interpolation-only table: orders each row's entries by source and lets rows whose
+/// weights and reflection bits agree (to 1e-13 of their largest weight) share one copy. On a
+/// lattice every interior row has the same stencil, so applying the table then streams only the
+/// source indices from memory (4 bytes per entry instead of 13). Results change by rounding only.
+void share_row_weights(WeightTable& table);
+
 /// Applies `table` to `field_count` fields: out_values (may be null) gets the interpolation,
 /// out_gradient (may be null) gets dimension * field_count fields, gradient of field f along
 /// axis c at index f * dimension + c. `parity[f]` is the mirror parity of field f.
 /// Parallel over target rows (OpenMP).
 void apply_operator(const WeightTable& table, const FieldArray& in, std::span<const Parity> parity,
                     FieldArray* out_values, FieldArray* out_gradient);
+
+/// Interpolation only, on interleaved values: field f of point j at in[j * fields + f] (and the
+/// same for out, by row). One cache line then carries all the fields of a source, which is what
+/// a gather over a large lattice needs (the hourglass filter); the sums are those of
+/// apply_operator, term by term.
+void apply_interpolation_interleaved(const WeightTable& table, std::span<const double> in,
+                                     std::span<const Parity> parity, std::span<double> out);
 
 }  // namespace rktsph

@@ -96,9 +96,10 @@ class RkTaylorStep {
   FieldArray boundary_internal_;
   FieldArray node_gradient_;
   FieldArray node_rate_;
-  FieldArray filter_points_;
-  FieldArray filter_round_trip_;
-  FieldArray filter_residual_;
+  std::vector<double> filter_values_;  // node-major copies for the filter's round trip
+  std::vector<double> filter_points_;
+  std::vector<double> filter_round_trip_;
+  std::vector<double> filter_residual_;
   std::vector<double> pore_buffer_;  // p_w kept out of the filter (saturated model)
 };
 
