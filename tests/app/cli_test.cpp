@@ -1,32 +1,23 @@
 // The rktsph command line as a user meets it: exit statuses, errors that name the file, line and
 // key, a run's files (read back by an independent parser), and a diverging run.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
+#include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include "../support/shell.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status;
-  std::string output;  // stdout and stderr
-};
+using Result = rktsph::test::ShellResult;
 
+// The program with these arguments; output is stdout and stderr.
 Result run(const std::string& arguments) {
-  const std::string command = std::string(RKTSPH_BINARY) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer;
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe))
-    output += buffer.data();
-  const int raw = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
+  return rktsph::test::shell(std::string(RKTSPH_BINARY) + " " + arguments + " 2>&1");
 }
 
 fs::path scratch(const std::string& name) {

@@ -5,35 +5,23 @@
 // python3-matplotlib (or, for the browser check, chromium) is not installed: they are only
 // needed for reports (`make deps-report`).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
 #include <array>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "../support/shell.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status;
-  std::string output;  // stdout only; stderr is discarded unless asked for
-};
-
-Result shell(const std::string& command) {
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer;
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe))
-    output += buffer.data();
-  const int raw = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
-}
+using Result = rktsph::test::ShellResult;  // output: stdout only, unless stderr is redirected
+using rktsph::test::shell;
 
 const std::string kTools = std::string(RKTSPH_SOURCE_DIR) + "/tools";
 

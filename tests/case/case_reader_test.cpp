@@ -353,6 +353,20 @@ TEST(CaseReader, RangeLimitsAreOpenOrClosedAsSpecified) {
   EXPECT_EQ(read_error(no_end).key(), "time.end");
 }
 
+TEST(CaseReader, CheckerboardStabilisationIsReadAndANegativeValueRejected) {
+  const std::string base = read_fixture("rich2d.yaml");
+  const std::string entry = "  solver_tolerance: 1.0e-9\n";
+  EXPECT_EQ(read_case_text(base, kFile).pore_fluid->checkerboard_stabilisation, 0.3);  // default
+  const std::string off = replace_once(base, entry, entry + "  checkerboard_stabilisation: 0\n");
+  EXPECT_EQ(read_case_text(off, kFile).pore_fluid->checkerboard_stabilisation, 0.0);
+  const std::string text =
+      replace_once(base, entry, entry + "  checkerboard_stabilisation: -0.1\n");
+  const InputError error = read_error(text);
+  EXPECT_EQ(error.key(), "pore_fluid.checkerboard_stabilisation");
+  EXPECT_EQ(error.location().line, position_of(text, "checkerboard_stabilisation:").line);
+  EXPECT_NE(error.allowed().find(">= 0"), std::string::npos) << error.what();
+}
+
 TEST(CaseReader, NotANumberOrInfinityIsRejected) {
   for (const char* value : {".nan", ".inf", "-.Inf", "NaN"}) {
     const std::string text = replace_once(read_fixture("bar1d_minimal.yaml"), "density: 2000",

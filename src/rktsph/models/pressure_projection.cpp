@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -87,6 +89,12 @@ void PressureProjection::assemble(double dt) {
   std::vector<Eigen::Triplet<double>> system, projection, coupling;
   std::vector<double> system_diagonal(static_cast<std::size_t>(n)),
       projection_diagonal(static_cast<std::size_t>(n));
+  // An entry of K: drained rows keep only their diagonal (added below); in free rows, drained
+  // columns go to the coupling that moves the prescribed values to the right-hand side.
+  auto add_entry = [&](Eigen::Index i, Eigen::Index j, double value) {
+    if (drained_[static_cast<std::size_t>(i)]) return;
+    (drained_[static_cast<std::size_t>(j)] ? coupling : system).emplace_back(i, j, value);
+  };
   const auto& ltilde = laplacian_.weighted;
   for (Eigen::Index i = 0; i < n; ++i) {
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(ltilde, i); it; ++it) {
@@ -99,50 +107,13 @@ void PressureProjection::assemble(double dt) {
       projection.emplace_back(i, j, projection_value);
       projection_diagonal[static_cast<std::size_t>(i)] -= projection_value;
       system_diagonal[static_cast<std::size_t>(i)] -= system_value;
-      const bool row_drained = drained_[static_cast<std::size_t>(i)];
-      const bool column_drained = drained_[static_cast<std::size_t>(j)];
-      if (!row_drained && !column_drained) system.emplace_back(i, j, system_value);
-      if (!row_drained && column_drained) coupling.emplace_back(i, j, system_value);
+      add_entry(i, j, system_value);
     }
   }
-  // Checkerboard stabilisation (docs/theory.md §6.6, eq. 6.5): w_c b_c b_c^T per lattice cell, b_c
-  // the twist
-  // (+1, -1, -1, +1) of its corners. The cells are those of the stress points (all four corners
-  // are nodes); mirrored cells are left out, which is the V_eff weighting of Ltilde.
-  std::vector<Eigen::Triplet<double>> stabilisation;
-  if (nodes_.dimension == 2 && checkerboard_theta_ > 0.0) {
-    for (const LatticeIndex& corner : nodes_.stress_point_index) {
-      std::int32_t node[4];
-      double sign[4];
-      double density = 0.0, volume = 0.0;
-      bool complete = true;
-      for (int c = 0; c < 4; ++c) {
-        const int di = c & 1, dj = c >> 1;
-        node[c] = nodes_.node_at({corner[0] + di, corner[1] + dj, corner[2]});
-        sign[c] = (di + dj) % 2 == 0 ? 1.0 : -1.0;
-        if (node[c] < 0) {
-          complete = false;
-          break;
-        }
-        density += 0.25 * density_[static_cast<std::size_t>(node[c])];
-        volume += 0.25 * nodes_.sph_nodes.volume[static_cast<std::size_t>(node[c])];
-      }
-      if (!complete) continue;
-      const double weight =
-          checkerboard_theta_ * alpha_ * alpha_ * dt / density * volume * checkerboard_rate_ / 16.0;
-      for (int a = 0; a < 4; ++a)
-        for (int b = 0; b < 4; ++b) {
-          const double value = weight * sign[a] * sign[b];
-          const auto i = static_cast<std::size_t>(node[a]), j = static_cast<std::size_t>(node[b]);
-          stabilisation.emplace_back(node[a], node[b], value);
-          if (drained_[i]) continue;  // drained rows keep only their diagonal
-          if (!drained_[j])
-            system.emplace_back(node[a], node[b], value);
-          else
-            coupling.emplace_back(node[a], node[b], value);
-        }
-    }
-  }
+  // Checkerboard stabilisation S (eq. 6.5), added to K like the Laplacian part.
+  const std::vector<Eigen::Triplet<double>> stabilisation = checkerboard_stabilisation(dt);
+  for (const Eigen::Triplet<double>& entry : stabilisation)
+    add_entry(entry.row(), entry.col(), entry.value());
   stabilisation_.resize(n, n);
   stabilisation_.setFromTriplets(stabilisation.begin(), stabilisation.end());
 
@@ -174,6 +145,33 @@ void PressureProjection::assemble(double dt) {
     s.jacobi.setMaxIterations(max_iterations_);
     s.jacobi.compute(system_);
   }
+}
+
+std::vector<Eigen::Triplet<double>> PressureProjection::checkerboard_stabilisation(
+    double dt) const {
+  // w_c b_c b_c^T per lattice cell, b_c = (+1, -1, -1, +1) the twist of its corners. The cells are
+  // those of the stress points (all four corners are nodes); mirrored cells are left out, which is
+  // the V_eff weighting of Ltilde (docs/theory.md §6.6).
+  std::vector<Eigen::Triplet<double>> entries;
+  if (nodes_.dimension != 2 || checkerboard_theta_ <= 0.0) return entries;
+  for (const LatticeIndex& corner : nodes_.stress_point_index) {
+    std::array<std::int32_t, 4> node{-1, -1, -1, -1};
+    double density = 0.0, volume = 0.0;
+    for (int c = 0; c < 4; ++c) {
+      node[c] = nodes_.node_at({corner[0] + (c & 1), corner[1] + (c >> 1), corner[2]});
+      if (node[c] < 0) break;
+      density += 0.25 * density_[static_cast<std::size_t>(node[c])];
+      volume += 0.25 * nodes_.sph_nodes.volume[static_cast<std::size_t>(node[c])];
+    }
+    if (std::find(node.begin(), node.end(), -1) != node.end()) continue;
+    const double weight =
+        checkerboard_theta_ * alpha_ * alpha_ * dt / density * volume * checkerboard_rate_ / 16.0;
+    auto sign = [](int c) { return ((c & 1) + (c >> 1)) % 2 == 0 ? 1.0 : -1.0; };
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        entries.emplace_back(node[a], node[b], weight * sign(a) * sign(b));
+  }
+  return entries;
 }
 
 void PressureProjection::solve(double time) {

@@ -58,6 +58,8 @@ class PressureProjection final : public StepProjection {
 
  private:
   void assemble(double dt);
+  /// The entries of S (eq. 6.5) for this dt, every row and column; empty unless 2D and theta > 0.
+  std::vector<Eigen::Triplet<double>> checkerboard_stabilisation(double dt) const;
   void solve(double time);
 
   const SaturatedVpw& model_;

@@ -15,8 +15,13 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <span>
+#include <utility>
+#include <vector>
+
+#include "rktsph/geometry/node_sets.hpp"
 
 namespace rktsph {
 
@@ -76,5 +81,12 @@ BandMeasurement measure_band(std::span<const double> x, std::span<const double> 
 
 /// Distance [m] from the point (x, y) to the centre line of `line`.
 double distance_to_band(const BandLine& line, double x, double y);
+
+/// Centre of the band on each lattice row of `nodes` with y in [y_low, y_high]: the mean x of the
+/// row's nodes with x >= x_min, weighted by the excess of `strain` over `threshold` (as
+/// measure_band weights them). Rows without such excess are left out. (x, y) pairs, bottom to top.
+std::vector<std::pair<double, double>> band_row_centres(
+    const NodeSets& nodes, std::span<const double> strain, double threshold, double y_low,
+    double y_high, double x_min = -std::numeric_limits<double>::infinity());
 
 }  // namespace rktsph

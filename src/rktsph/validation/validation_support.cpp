@@ -163,4 +163,13 @@ double relative_error(double value, double reference) {
   return std::abs(value / reference - 1.0);
 }
 
+std::span<const double> internal_variable(const Simulation& simulation, const std::string& name,
+                                          const std::string& case_name) {
+  const auto& names = simulation.model().internal_names();
+  const auto found = std::find(names.begin(), names.end(), name);
+  if (found == names.end()) throw RunError(case_name + ": the model has no " + name);
+  return {simulation.state().internal.field(static_cast<int>(found - names.begin())),
+          simulation.nodes().sph_nodes.size()};
+}
+
 }  // namespace rktsph

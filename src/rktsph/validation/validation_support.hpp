@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -59,5 +60,10 @@ std::vector<double> add_row_probes(CaseDescription& description, const std::stri
 
 /// |a/b - 1|
 double relative_error(double value, double reference);
+
+/// The SPH-node values of the model's internal variable `name` (e.g. "eps_vp") at the current
+/// state; throws RunError naming `case_name` if the model has no such variable.
+std::span<const double> internal_variable(const Simulation& simulation, const std::string& name,
+                                          const std::string& case_name);
 
 }  // namespace rktsph

@@ -149,15 +149,11 @@ std::vector<CheckResult> validate_sample2d_localization(const ValidationContext&
 
   std::optional<BandMeasurement> band;
   const auto measure_final_band = [&](const Simulation& simulation) {
-    const auto& names = simulation.model().internal_names();
-    const auto field = std::find(names.begin(), names.end(), "eps_vp");
-    if (field == names.end()) throw RunError("sample2d-localization: the model has no eps_vp");
     const PointCloud& nodes = simulation.nodes().sph_nodes;
-    const double* strain =
-        simulation.state().internal.field(static_cast<int>(field - names.begin()));
+    const std::span<const double> strain =
+        internal_variable(simulation, "eps_vp", "sample2d-localization");
     BandAngleOptions options;  // angle to the vertical, loading axis
-    band = measure_band(nodes.position[0], nodes.position[1],
-                        std::span<const double>(strain, nodes.size()), options);
+    band = measure_band(nodes.position[0], nodes.position[1], strain, options);
   };
   const std::filesystem::path directory = run_for_validation(
       context, description, context.quick ? "quick" : "full", measure_final_band);

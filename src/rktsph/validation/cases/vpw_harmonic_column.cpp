@@ -37,6 +37,7 @@
 #include "rktsph/core/error.hpp"
 #include "rktsph/validation/references/elastic_moduli.hpp"
 #include "rktsph/validation/references/harmonic_column.hpp"
+#include "rktsph/validation/references/terzaghi.hpp"
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
@@ -92,7 +93,7 @@ HarmonicSetup read_setup(CaseDescription& description) {
   setup.constrained_modulus = references::oedometric_modulus(
       material_value(description, "young_modulus"), material_value(description, "poisson_ratio"));
   const PoreFluidSpec& fluid = *description.pore_fluid;
-  setup.biot_modulus = fluid.bulk_modulus / fluid.porosity;
+  setup.biot_modulus = references::biot_modulus(fluid.porosity, fluid.bulk_modulus);
   setup.biot_coefficient = fluid.biot_coefficient;
   setup.density = material_value(description, "density");
   setup.fluid_density = fluid.density;

@@ -38,29 +38,6 @@ constexpr double kWeakZoneHalfDiagonal = 0.0707;
 // leaves the right side [m].
 constexpr double kRidgeLow = 0.15, kRidgeHigh = 0.85;
 
-/// Centre of the band on each lattice row with y in [y_low, y_high]: the mean x of the nodes of
-/// the row weighted by the excess of eps_vp over `threshold` (as the band measurement weights
-/// them). Returns (x, y) pairs, bottom to top.
-std::vector<std::pair<double, double>> ridge_centres(const Simulation& simulation,
-                                                     const double* strain, double threshold,
-                                                     double y_low, double y_high) {
-  const NodeSets& nodes = simulation.nodes();
-  std::vector<std::pair<double, double>> centres;
-  for (long row = 0; row < nodes.lattice_size[1]; ++row) {
-    const double y = nodes.origin[1] + static_cast<double>(row) * nodes.spacing;
-    if (y < y_low - 1e-9 || y > y_high + 1e-9) continue;
-    double weight = 0.0, moment = 0.0;
-    for (std::size_t k = 0; k < nodes.sph_nodes.size(); ++k) {
-      if (nodes.node_index[k][1] != row || strain[k] <= threshold) continue;
-      weight += strain[k] - threshold;
-      moment +=
-          (strain[k] - threshold) * (nodes.origin[0] + nodes.node_index[k][0] * nodes.spacing);
-    }
-    if (weight > 0.0) centres.emplace_back(moment / weight, y);
-  }
-  return centres;
-}
-
 /// The band's centre line against the 45-degree line from the weak zone, p_w in and out of the
 /// band against time, and pictures of eps_vp and p_w.
 void report_localization(ValidationReport& report, const std::filesystem::path& run_directory,
@@ -144,16 +121,13 @@ std::vector<CheckResult> validate_vpw_localization(const ValidationContext& cont
   std::vector<std::pair<double, double>> centres;
   std::array<double, 3> largest_pressure{};  // p_w, x, y of the largest |p_w| at the end
   const auto measure_final_band = [&](const Simulation& simulation) {
-    const auto& names = simulation.model().internal_names();
-    const auto field = std::find(names.begin(), names.end(), "eps_vp");
-    if (field == names.end()) throw RunError("vpw-localization: the model has no eps_vp");
     const PointCloud& nodes = simulation.nodes().sph_nodes;
-    const double* strain =
-        simulation.state().internal.field(static_cast<int>(field - names.begin()));
-    band = measure_band(nodes.position[0], nodes.position[1],
-                        std::span<const double>(strain, nodes.size()), BandAngleOptions{});
+    const std::span<const double> strain =
+        internal_variable(simulation, "eps_vp", "vpw-localization");
+    band = measure_band(nodes.position[0], nodes.position[1], strain, BandAngleOptions{});
     if (context.report) {
-      centres = ridge_centres(simulation, strain, band->threshold, kRidgeLow, kRidgeHigh);
+      centres =
+          band_row_centres(simulation.nodes(), strain, band->threshold, kRidgeLow, kRidgeHigh);
       const int pore = simulation.model().pore_pressure_field();
       for (std::size_t k = 0; k < nodes.size(); ++k)
         if (const double value = simulation.state().fields(pore, k);

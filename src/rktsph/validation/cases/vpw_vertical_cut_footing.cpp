@@ -56,11 +56,9 @@ double footing_pressure(const ProbeTable& probes, std::size_t row, int node_coun
 }
 
 BandMeasurement measure_wedge_band(const Simulation& simulation) {
-  const auto& names = simulation.model().internal_names();
-  const auto field = std::find(names.begin(), names.end(), "eps_vp");
-  if (field == names.end()) throw RunError("vpw-vertical-cut-footing: the model has no eps_vp");
   const PointCloud& nodes = simulation.nodes().sph_nodes;
-  const double* strain = simulation.state().internal.field(static_cast<int>(field - names.begin()));
+  const std::span<const double> strain =
+      internal_variable(simulation, "eps_vp", "vpw-vertical-cut-footing");
   std::vector<double> x, y, value;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const double px = nodes.position[0][i], py = nodes.position[1][i];
@@ -81,26 +79,13 @@ struct FinalState {
 };
 
 FinalState final_state(const Simulation& simulation, double threshold) {
-  const auto& names = simulation.model().internal_names();
-  const auto field = std::find(names.begin(), names.end(), "eps_vp");
-  if (field == names.end()) throw RunError("vpw-vertical-cut-footing: the model has no eps_vp");
-  const double* strain = simulation.state().internal.field(static_cast<int>(field - names.begin()));
+  const std::span<const double> strain =
+      internal_variable(simulation, "eps_vp", "vpw-vertical-cut-footing");
   const NodeSets& nodes = simulation.nodes();
   FinalState state;
-  for (long row = 0; row < nodes.lattice_size[1]; ++row) {
-    const double y = nodes.origin[1] + static_cast<double>(row) * nodes.spacing;
-    if (y < kRidgeLow - 1e-9 || y > kCrestY - 1e-9) continue;  // below the crest row
-    double weight = 0.0, moment = 0.0;
-    for (std::size_t k = 0; k < nodes.sph_nodes.size(); ++k) {
-      const double x = nodes.origin[0] + nodes.node_index[k][0] * nodes.spacing;
-      if (nodes.node_index[k][1] != row || x < kFootingLeft - kFootingWidth ||
-          strain[k] <= threshold)
-        continue;
-      weight += strain[k] - threshold;
-      moment += (strain[k] - threshold) * x;
-    }
-    if (weight > 0.0) state.centres.emplace_back(moment / weight, y);
-  }
+  // The rows below the crest row.
+  state.centres = band_row_centres(nodes, strain, threshold, kRidgeLow, kCrestY - nodes.spacing,
+                                   kFootingLeft - kFootingWidth);
   const int pore = simulation.model().pore_pressure_field();
   for (std::size_t k = 0; k < nodes.sph_nodes.size(); ++k) {
     const double value = simulation.state().fields(pore, k);
