@@ -123,6 +123,7 @@ TEST(CaseReader, MinimalCaseGetsTheSchemaDefaults) {
   EXPECT_TRUE(numerics.hourglass_filter);
   EXPECT_EQ(numerics.hourglass_kappa, 0.1);
   EXPECT_EQ(numerics.hourglass_h_over_dx, 1.3);
+  EXPECT_EQ(numerics.hourglass_fields, HourglassFields::Velocity);
   EXPECT_EQ(numerics.artificial_viscosity, 0.0);
 
   EXPECT_EQ(description.time.end, 0.36);
@@ -234,6 +235,7 @@ TEST(CaseReader, RichCaseReadsEveryValueAsWritten) {
   EXPECT_FALSE(numerics.hourglass_filter);
   EXPECT_EQ(numerics.hourglass_kappa, 0.2);
   EXPECT_EQ(numerics.hourglass_h_over_dx, 1.5);
+  EXPECT_EQ(numerics.hourglass_fields, HourglassFields::All);
   EXPECT_EQ(numerics.artificial_viscosity, 0.5);
 
   EXPECT_EQ(description.time.end, 2.5);
@@ -365,6 +367,18 @@ TEST(CaseReader, CheckerboardStabilisationIsReadAndANegativeValueRejected) {
   EXPECT_EQ(error.key(), "pore_fluid.checkerboard_stabilisation");
   EXPECT_EQ(error.location().line, position_of(text, "checkerboard_stabilisation:").line);
   EXPECT_NE(error.allowed().find(">= 0"), std::string::npos) << error.what();
+}
+
+TEST(CaseReader, HourglassFieldsAcceptsVelocityOrAllOnly) {
+  const std::string base = read_fixture("bar1d_minimal.yaml") + "numerics:\n  hourglass: ";
+  EXPECT_EQ(read_case_text(base + "{fields: velocity}\n", kFile).numerics.hourglass_fields,
+            HourglassFields::Velocity);
+  const std::string text = base + "{fields: stress}\n";
+  const InputError error = read_error(text);
+  EXPECT_EQ(error.key(), "numerics.hourglass.fields");
+  EXPECT_EQ(error.location().line, position_of(text, "fields:").line);
+  EXPECT_NE(error.allowed().find("velocity"), std::string::npos) << error.what();
+  EXPECT_NE(error.allowed().find("all"), std::string::npos) << error.what();
 }
 
 TEST(CaseReader, NotANumberOrInfinityIsRejected) {
@@ -730,6 +744,7 @@ void expect_same_case(const CaseDescription& a, const CaseDescription& b) {
   EXPECT_EQ(n.hourglass_filter, m.hourglass_filter);
   EXPECT_EQ(n.hourglass_kappa, m.hourglass_kappa);
   EXPECT_EQ(n.hourglass_h_over_dx, m.hourglass_h_over_dx);
+  EXPECT_EQ(n.hourglass_fields, m.hourglass_fields);
   EXPECT_EQ(n.artificial_viscosity, m.artificial_viscosity);
   EXPECT_EQ(a.time.end, b.time.end);
   EXPECT_EQ(a.time.max_steps, b.time.max_steps);

@@ -121,6 +121,12 @@ struct PoreFluidSpec {
   SourceLocation where;
 };
 
+/// The fields the hourglass filter acts on (docs/theory.md §3.3).
+enum class HourglassFields {
+  Velocity,  ///< the velocity only (default): equilibrium stress states stay fixed points
+  All,       ///< every field (prototype R6); the total normal stress in the saturated model
+};
+
 struct NumericsSpec {
   KernelType kernel = KernelType::CubicSpline;
   double h_over_dx = 0.75;          ///< prototype R1
@@ -133,6 +139,7 @@ struct NumericsSpec {
   bool hourglass_filter = true;  ///< R6, default on in 2D, ignored in 1D
   double hourglass_kappa = 0.1;
   double hourglass_h_over_dx = 1.3;
+  HourglassFields hourglass_fields = HourglassFields::Velocity;
   double artificial_viscosity = 0.0;  ///< alpha of R7, 0 = off
   SourceLocation where;
 };

@@ -437,7 +437,7 @@ void CaseReader::read_numerics(const YamlNode& node) {
   }
   if (const YamlNode* hourglass_node = map.find("hourglass")) {
     const YamlMap hourglass(*hourglass_node);
-    hourglass.allow_only({"enabled", "kappa", "h_over_dx"});
+    hourglass.allow_only({"enabled", "kappa", "h_over_dx", "fields"});
     if (const YamlNode* enabled = hourglass.find("enabled")) {
       numerics.hourglass_filter = to_bool(*enabled);
     }
@@ -446,6 +446,11 @@ void CaseReader::read_numerics(const YamlNode& node) {
     }
     if (const YamlNode* ratio = hourglass.find("h_over_dx")) {
       numerics.hourglass_h_over_dx = to_number(*ratio, kSmoothingRatioRange);
+    }
+    if (const YamlNode* fields = hourglass.find("fields")) {
+      numerics.hourglass_fields = to_choice(*fields, {"velocity", "all"}) == "all"
+                                      ? HourglassFields::All
+                                      : HourglassFields::Velocity;
     }
   }
   if (const YamlNode* viscosity = map.find("artificial_viscosity")) {
@@ -939,6 +944,8 @@ void emit_numerics(YAML::Emitter& out, const NumericsSpec& numerics) {
   out << YAML::Key << "enabled" << YAML::Value << (numerics.hourglass_filter ? "true" : "false");
   out << YAML::Key << "kappa" << YAML::Value << number(numerics.hourglass_kappa);
   out << YAML::Key << "h_over_dx" << YAML::Value << number(numerics.hourglass_h_over_dx);
+  out << YAML::Key << "fields" << YAML::Value
+      << (numerics.hourglass_fields == HourglassFields::All ? "all" : "velocity");
   out << YAML::EndMap;
   out << YAML::Key << "artificial_viscosity" << YAML::Value
       << number(numerics.artificial_viscosity);

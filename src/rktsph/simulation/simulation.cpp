@@ -81,6 +81,7 @@ Simulation::Simulation(CaseDescription description) : description_(std::move(des
   options.hourglass_filter = numerics.hourglass_filter;
   options.hourglass_kappa = numerics.hourglass_kappa;
   options.hourglass_h_over_dx = numerics.hourglass_h_over_dx;
+  options.hourglass_fields = numerics.hourglass_fields;
   options.artificial_viscosity = numerics.artificial_viscosity;
   step_ = std::make_unique<RkTaylorStep>(
       *model_, nodes_, build_step_operators(nodes_, options, conditions_->mirror_planes()),

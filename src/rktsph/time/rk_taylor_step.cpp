@@ -92,13 +92,24 @@ StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& opt
   const auto n_points = static_cast<std::int32_t>(nodes.stress_points.size());
   std::vector<std::vector<StencilSource>> stencils(n);
   ops.node_to_boundary_row.assign(n, -1);
+  std::vector<std::int32_t> incomplete;  // nodes whose cells are not all present
   for (std::size_t i = 0; i < n; ++i) {
     gather_stencil(nodes.sph_nodes.point(i), point_cells, operator_options, -1, stencils[i]);
-    if (needs_boundary_half_step(occupied_cells(stencils[i], nodes.sph_nodes.point(i), d, dx), d)) {
+    const int occupied = occupied_cells(stencils[i], nodes.sph_nodes.point(i), d, dx);
+    if (occupied < (1 << d)) incomplete.push_back(static_cast<std::int32_t>(i));
+    if (needs_boundary_half_step(occupied, d)) {
       ops.node_to_boundary_row[i] = static_cast<std::int32_t>(ops.boundary_nodes.size());
       ops.boundary_nodes.push_back(static_cast<std::int32_t>(i));
     }
   }
+  // Their momentum balance: the adjoint of the stress points' gradient, with the node's own
+  // half-step value (which carries the face tractions) where it has one (docs/theory.md §5.3).
+  std::vector<std::int32_t> own_column(incomplete.size(), -1);
+  for (std::size_t r = 0; r < incomplete.size(); ++r)
+    if (ops.node_to_boundary_row[static_cast<std::size_t>(incomplete[r])] >= 0)
+      own_column[r] = n_points + incomplete[r];
+  ops.momentum_closure = build_adjoint_gradient(ops.nodes_to_points, nodes.stress_points.volume,
+                                                incomplete, own_column);
 
   WeightTable& table = ops.points_to_nodes;
   table.dimension = d;
@@ -155,6 +166,7 @@ StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& opt
   // wider support, so that linear fields pass unchanged up to the boundary (prototype R6).
   ops.hourglass_filter = options.hourglass_filter && d >= 2 && options.hourglass_kappa > 0.0;
   ops.hourglass_kappa = options.hourglass_kappa;
+  ops.hourglass_fields = options.hourglass_fields;
   ops.viscosity_length = options.artificial_viscosity * dx;
   if (ops.hourglass_filter) {
     OperatorOptions filter_options = operator_options;
@@ -190,6 +202,17 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
       projected_rows_.push_back(operators_.node_to_boundary_row[static_cast<std::size_t>(node)]);
   }
   internal_parity_.assign(static_cast<std::size_t>(nk), kEven);
+  // Every field but the velocity enters the flux rate only through the momentum balance.
+  momentum_flux_.assign(static_cast<std::size_t>(nf), 1);
+  for (int a = 0; a < d; ++a)
+    momentum_flux_[static_cast<std::size_t>(model.velocity_field(a))] = 0;
+  for (int f = 0; f < nf; ++f) {
+    const bool velocity = momentum_flux_[static_cast<std::size_t>(f)] == 0;
+    if (operators_.hourglass_fields == HourglassFields::All || velocity) {
+      filtered_fields_.push_back(f);
+      filtered_parities_.push_back(model.parities()[static_cast<std::size_t>(f)]);
+    }
+  }
   half_step_ = FieldArray(nf, nv + ns);
   point_gradient_ = FieldArray(nf * d, nv);
   point_rate_ = FieldArray(nf, nv);
@@ -202,12 +225,13 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
   node_gradient_ = FieldArray(nf * d, ns);
   node_rate_ = FieldArray(nf, ns);
   if (operators_.hourglass_filter) {
-    const auto values = static_cast<std::size_t>(nf);
+    const auto values = filtered_fields_.size();
     filter_values_.assign(values * ns, 0.0);
     filter_points_.assign(values * nv, 0.0);
     filter_round_trip_.assign(values * ns, 0.0);
     filter_residual_.assign(values * ns, 0.0);
-    if (model.pore_pressure_field() >= 0) pore_buffer_.assign(ns, 0.0);
+    if (model.pore_pressure_field() >= 0 && operators_.hourglass_fields == HourglassFields::All)
+      pore_buffer_.assign(ns, 0.0);
   }
 }
 
@@ -277,6 +301,8 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   // Step 2: gradient of the half-step values at the SPH nodes, full step from Phi^n.
   apply_operator(operators_.points_to_nodes, half_step_, model_.parities(), nullptr,
                  &node_gradient_);
+  apply_adjoint_gradient(operators_.momentum_closure, half_step_, model_.parities(), momentum_flux_,
+                         node_gradient_);
   model_.flux_rate(nodes_.node_material, node_gradient_, node_rate_);
   const auto& boundary = operators_.boundary_nodes;
   const int nf = model_.field_count();
@@ -295,8 +321,13 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   }
   model_.advance(nodes_.node_material, node_rate_, state.time, dt, state.fields, state.internal);
   project_free_faces(boundary_start_, state.fields, false);
-  if (operators_.hourglass_filter) filter_hourglass(state.fields);
   conditions_.apply(state.time + dt, state.fields);
+  if (operators_.hourglass_filter) {
+    // After the conditions: a fixed node's pre-condition velocity carries its reaction, which the
+    // round trip would otherwise spread to its neighbours; then again, as the filter moves them.
+    filter_hourglass(state.fields);
+    conditions_.apply(state.time + dt, state.fields);
+  }
 }
 
 void RkTaylorStep::project_free_faces(const FieldArray& start, FieldArray& values,
@@ -316,11 +347,13 @@ void RkTaylorStep::project_free_faces(const FieldArray& start, FieldArray& value
 }
 
 void RkTaylorStep::filter_hourglass(FieldArray& fields) {
+  if (!operators_.hourglass_filter) return;
   // Saturated model: sigma' and p_w both jump at a drained face while the total stress does not;
   // filtering them separately spreads that boundary layer and drains undrained soil. So the
   // filter acts on the total normal stress sigma'_aa - alpha p_w and leaves p_w untouched
   // (docs/theory.md §6.5).
-  const int pore = model_.pore_pressure_field();
+  const int pore =
+      operators_.hourglass_fields == HourglassFields::All ? model_.pore_pressure_field() : -1;
   const std::size_t count_nodes = nodes_.sph_nodes.size();
   const double alpha = model_.biot_coefficient();
   auto shift_normal_stress = [&](double sign) {
@@ -341,19 +374,20 @@ void RkTaylorStep::filter_hourglass(FieldArray& fields) {
   // (docs/theory.md §3.3; symbol 1 - kappa (1 - a^2)^2, removes the checkerboard).
   // The round trip works on node-major (interleaved) copies: its gathers reach ~21 sources per
   // row, and one cache line then brings all the fields of a source (3x faster on large lattices).
-  const int nf = fields.field_count();
+  const auto nf = static_cast<int>(filtered_fields_.size());
+  const int* filtered = filtered_fields_.data();
   const auto nodes = static_cast<std::int64_t>(count_nodes);
   auto round_trip = [&](const std::vector<double>& in) {
-    apply_interpolation_interleaved(operators_.filter_to_points, in, model_.parities(),
+    apply_interpolation_interleaved(operators_.filter_to_points, in, filtered_parities_,
                                     filter_points_);
-    apply_interpolation_interleaved(operators_.filter_to_nodes, filter_points_, model_.parities(),
+    apply_interpolation_interleaved(operators_.filter_to_nodes, filter_points_, filtered_parities_,
                                     filter_round_trip_);
   };
   double* values = filter_values_.data();
 #pragma omp parallel for schedule(static) if (nodes > kParallelThreshold)
   for (std::int64_t i = 0; i < nodes; ++i)
     for (int f = 0; f < nf; ++f)
-      values[i * nf + f] = fields.field(f)[i];
+      values[i * nf + f] = fields.field(filtered[f])[i];
   round_trip(filter_values_);
   double* residual = filter_residual_.data();
   const double* trip = filter_round_trip_.data();
@@ -366,7 +400,8 @@ void RkTaylorStep::filter_hourglass(FieldArray& fields) {
 #pragma omp parallel for schedule(static) if (nodes > kParallelThreshold)
   for (std::int64_t i = 0; i < nodes; ++i)
     for (int f = 0; f < nf; ++f)
-      fields.field(f)[i] = values[i * nf + f] - kappa * (residual[i * nf + f] - trip[i * nf + f]);
+      fields.field(filtered[f])[i] =
+          values[i * nf + f] - kappa * (residual[i * nf + f] - trip[i * nf + f]);
   if (pore >= 0) {
     std::copy_n(pore_buffer_.begin(), count_nodes, fields.field(pore));
     shift_normal_stress(1.0);

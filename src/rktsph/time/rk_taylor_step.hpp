@@ -2,7 +2,9 @@
 //   1   stress points:  Phi^{n+1/2} = I(Phi^n) + RK[frozen R(G(Phi^n))] over dt/2
 //   1b  boundary nodes: Phi^{n+1/2} = Phi^n + RK[frozen R(G_SS(Phi^n))] over dt/2, then BCs
 //   2   SPH nodes:      Phi^{n+1}   = Phi^n + RK[frozen R(G(Phi^{n+1/2}))] over dt
-//   3   hourglass filter (2D), boundary conditions at t + dt, displacement.
+//   3   boundary conditions at t + dt, hourglass filter (2D), again the conditions, displacement.
+// The momentum balance of nodes whose cells are incomplete is the adjoint of the stress points'
+// velocity gradient (docs/theory.md §5.3).
 // The operators are weight tables built once (positions are fixed in V1 and V3).
 #pragma once
 
@@ -13,6 +15,7 @@
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/models/physics_model.hpp"
 #include "rktsph/simulation/state.hpp"
+#include "rktsph/sph/adjoint_gradient.hpp"
 #include "rktsph/sph/operators.hpp"
 
 namespace rktsph {
@@ -24,6 +27,7 @@ struct StepOptions {
   bool hourglass_filter = true;  // ignored in 1D, where midpoint stress points have no such mode
   double hourglass_kappa = 0.1;
   double hourglass_h_over_dx = 1.3;
+  HourglassFields hourglass_fields = HourglassFields::Velocity;
   double artificial_viscosity = 0.0;  // alpha of prototype R7; 0 = off
 };
 
@@ -34,8 +38,12 @@ struct StepOperators {
   WeightTable boundary_gradient;  ///< step 1b: rows = boundary_nodes, columns = SPH nodes
   std::vector<std::int32_t> boundary_nodes;        ///< nodes with incomplete stencils (step 1b)
   std::vector<std::int32_t> node_to_boundary_row;  ///< -1 for interior nodes
+  /// Step 2 momentum closure of every node whose 2^d cells are not all present (the boundary
+  /// nodes and the re-entrant corners): the adjoint of nodes_to_points (docs/theory.md eq. 5.2).
+  AdjointGradient momentum_closure;
   bool hourglass_filter = false;
   double hourglass_kappa = 0.0;
+  HourglassFields hourglass_fields = HourglassFields::Velocity;
   WeightTable filter_to_points;  ///< first-order round trip of the filter (prototype R6)
   WeightTable filter_to_nodes;
   double viscosity_length = 0.0;  ///< alpha * dx of the artificial viscosity (0 = off)
@@ -67,13 +75,14 @@ class RkTaylorStep {
 
   const StepOperators& operators() const { return operators_; }
   void set_projection(StepProjection* projection) { projection_ = projection; }
+  /// Applies the hourglass filter of step 3 alone (docs/theory.md eq. 3.1); no-op when it is off.
+  void filter_hourglass(FieldArray& fields);
 
  private:
   void step_stress_points(const State& state, double dt);
   void step_boundary_nodes(const State& state, double dt);
   void step_nodes(State& state, double dt);
   void project_free_faces(const FieldArray& start, FieldArray& values, bool boundary_rows) const;
-  void filter_hourglass(FieldArray& fields);
 
   const PhysicsModel& model_;
   const NodeSets& nodes_;
@@ -82,7 +91,10 @@ class RkTaylorStep {
   StepProjection* projection_ = nullptr;
   std::vector<std::int32_t> boundary_material_;
   std::vector<std::int32_t> projected_rows_;
-  std::vector<Parity> internal_parity_;  // boundary rows whose stress increments are projected
+  std::vector<Parity> internal_parity_;      // boundary rows whose stress increments are projected
+  std::vector<std::uint8_t> momentum_flux_;  // 1 for the fields whose gradient feeds the momentum
+  std::vector<int> filtered_fields_;         // the fields the hourglass filter acts on
+  std::vector<Parity> filtered_parities_;
 
   // Scratch, allocated once.
   FieldArray half_step_;  // [stress points ; SPH nodes] at t + dt/2

@@ -1,0 +1,106 @@
+#include "rktsph/sph/adjoint_gradient.hpp"
+
+#include <bit>
+#include <stdexcept>
+#include <string>
+
+namespace rktsph {
+
+AdjointGradient build_adjoint_gradient(const WeightTable& forward,
+                                       std::span<const double> row_volume,
+                                       std::span<const std::int32_t> target,
+                                       std::span<const std::int32_t> self_column) {
+  if (!forward.weight_start.empty() || !forward.has_gradient ||
+      row_volume.size() != forward.rows() || self_column.size() != target.size())
+    throw std::invalid_argument("build_adjoint_gradient: inconsistent forward table or sizes");
+  const int d = forward.dimension;
+  std::int32_t columns = 0;
+  for (std::int32_t s : forward.source)
+    columns = std::max(columns, s + 1);
+  for (std::int32_t n : target)
+    columns = std::max(columns, n + 1);
+  std::vector<std::int32_t> row_of(static_cast<std::size_t>(columns), -1);
+  for (std::size_t r = 0; r < target.size(); ++r)
+    row_of[static_cast<std::size_t>(target[r])] = static_cast<std::int32_t>(r);
+
+  // Entries of each target, in forward-row order.
+  struct Entry {
+    std::int32_t point;
+    std::uint8_t reflection;
+    double gradient[3];
+  };
+  std::vector<std::vector<Entry>> entries(target.size());
+  AdjointGradient adjoint;
+  adjoint.lumped_volume.assign(target.size(), 0.0);
+  for (std::size_t p = 0; p < forward.rows(); ++p)
+    for (auto k = static_cast<std::size_t>(forward.row_start[p]);
+         k < static_cast<std::size_t>(forward.row_start[p + 1]); ++k) {
+      const std::int32_t r = row_of[static_cast<std::size_t>(forward.source[k])];
+      if (r < 0) continue;
+      const auto row = static_cast<std::size_t>(r);
+      adjoint.lumped_volume[row] += row_volume[p] * forward.interpolation[k];
+      Entry e{static_cast<std::int32_t>(p),
+              forward.has_reflections ? forward.reflection[k] : std::uint8_t{0},
+              {0.0, 0.0, 0.0}};
+      for (int c = 0; c < d; ++c)
+        e.gradient[c] = -row_volume[p] * forward.gradient[static_cast<std::size_t>(c)][k];
+      entries[row].push_back(e);
+    }
+
+  WeightTable& table = adjoint.table;
+  table.dimension = d;
+  table.row_start.assign(1, 0);
+  for (std::size_t r = 0; r < target.size(); ++r) {
+    const double volume = adjoint.lumped_volume[r];
+    if (entries[r].empty() || !(volume > 0.0))
+      throw std::invalid_argument("build_adjoint_gradient: node " + std::to_string(target[r]) +
+                                  " is in no forward row (zero lumped volume)");
+    for (const Entry& e : entries[r]) {
+      table.source.push_back(e.point);
+      table.reflection.push_back(e.reflection);
+      table.has_reflections = table.has_reflections || e.reflection != 0;
+      table.interpolation.push_back(0.0);
+      for (int c = 0; c < d; ++c)
+        table.gradient[static_cast<std::size_t>(c)].push_back(e.gradient[c] / volume);
+    }
+    table.row_start.push_back(static_cast<std::int64_t>(table.source.size()));
+  }
+  adjoint.target.assign(target.begin(), target.end());
+  adjoint.self_column.assign(self_column.begin(), self_column.end());
+  return adjoint;
+}
+
+void apply_adjoint_gradient(const AdjointGradient& adjoint, const FieldArray& in,
+                            std::span<const Parity> parity, std::span<const std::uint8_t> selected,
+                            FieldArray& out_gradient) {
+  const WeightTable& table = adjoint.table;
+  const int d = table.dimension;
+  const int field_count = in.field_count();
+  if (static_cast<int>(parity.size()) != field_count ||
+      static_cast<int>(selected.size()) != field_count ||
+      out_gradient.field_count() < field_count * d)
+    throw std::invalid_argument("apply_adjoint_gradient: field count, parity and outputs disagree");
+  for (std::size_t r = 0; r < table.rows(); ++r) {
+    const auto node = static_cast<std::size_t>(adjoint.target[r]);
+    const std::int32_t self = adjoint.self_column[r];
+    for (int f = 0; f < field_count; ++f) {
+      if (!selected[static_cast<std::size_t>(f)]) continue;
+      const double* values = in.field(f);
+      const double own = self >= 0 ? values[self] : 0.0;
+      for (int c = 0; c < d; ++c) {
+        // Sign of a reflected entry: the parity of the momentum component this term feeds.
+        const unsigned odd = static_cast<unsigned>(parity[static_cast<std::size_t>(f)]) ^ (1u << c);
+        double sum = 0.0;
+        for (auto k = static_cast<std::size_t>(table.row_start[r]);
+             k < static_cast<std::size_t>(table.row_start[r + 1]); ++k) {
+          const double sign = (std::popcount(table.reflection[k] & odd) & 1) ? -1.0 : 1.0;
+          sum += table.gradient[static_cast<std::size_t>(c)][k] * sign *
+                 (values[table.source[k]] - own);
+        }
+        out_gradient.field(f * d + c)[node] = sum;
+      }
+    }
+  }
+}
+
+}  // namespace rktsph
