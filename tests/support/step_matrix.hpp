@@ -31,4 +31,34 @@ inline double spectral_radius(Simulation& simulation) {
   return static_cast<double>(solver.eigenvalues().cwiseAbs().maxCoeff());
 }
 
+/// Largest share of the velocity in the fixed points of the step of a damped, unloaded lattice:
+/// the largest singular value of the velocity rows of an orthonormal basis of ker(I - M), with
+/// the stresses scaled by `impedance` (rho c_p) so that all unknowns are of one size. Zero when
+/// the only velocity a damped body can keep is rest (docs/theory.md §5.3).
+inline double velocity_in_fixed_points(Simulation& simulation, double impedance) {
+  State& state = simulation.state();
+  const std::size_t n = state.fields.point_count();
+  const auto size = static_cast<Eigen::Index>(state.fields.field_count() * n);
+  const auto velocities = static_cast<Eigen::Index>(simulation.model().dimension() * n);
+  auto scale = [&](Eigen::Index k) { return k < velocities ? 1.0 : impedance; };
+  Eigen::MatrixXd identity_minus_step = Eigen::MatrixXd::Identity(size, size);
+  for (Eigen::Index column = 0; column < size; ++column) {
+    std::fill(state.fields.data().begin(), state.fields.data().end(), 0.0);
+    state.fields.data()[static_cast<std::size_t>(column)] = scale(column);
+    state.time = 0.0;
+    simulation.step().advance(state, simulation.time_step());
+    for (Eigen::Index row = 0; row < size; ++row)
+      identity_minus_step(row, column) -=
+          state.fields.data()[static_cast<std::size_t>(row)] / scale(row);
+  }
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(identity_minus_step);
+  lu.setThreshold(1e-9);
+  const Eigen::MatrixXd kernel = lu.kernel();
+  if (kernel.cols() == 0 || kernel.norm() == 0.0) return 0.0;
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(kernel);
+  const Eigen::MatrixXd basis = qr.householderQ() * Eigen::MatrixXd::Identity(size, kernel.cols());
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(basis.topRows(velocities));
+  return svd.singularValues()(0);
+}
+
 }  // namespace rktsph::test

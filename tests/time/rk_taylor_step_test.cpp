@@ -162,6 +162,18 @@ TEST(RkTaylorStepSlow, SpectralRadiusOfTheFullStepWithEveryBoundaryTypeIsAtMostO
     }
 }
 
+TEST(RkTaylorStepSlow, DampedLatticeWithEveryBoundaryTypeCanOnlyComeToRest) {
+  // With damping the only velocity in a fixed point of the step is zero (docs/theory.md §5.3):
+  // before the adjoint closure, the free corners forced a checkerboard that stayed.
+  for (bool filter : {true, false}) {
+    std::string text = stability_case(0.5, filter);
+    text.replace(text.find("numerics:"), 9, "loads: {damping: {coefficient: 20}}\nnumerics:");
+    Simulation simulation(read_case_text(text, "stability.yaml"));
+    const double impedance = 2000.0 * simulation.model().max_wave_speed();
+    EXPECT_LT(test::velocity_in_fixed_points(simulation, impedance), 1e-8) << "filter " << filter;
+  }
+}
+
 TEST(RkTaylorStepSlow, SpectralRadiusExceedsOneBeyondTheCourantLimit) {
   // Sanity of the test above: the same tool must see the instability at C = 1.1 (limit 1.0).
   Simulation simulation(read_case_text(stability_case(1.1, false), "stability.yaml"));

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "rktsph/core/error.hpp"
@@ -102,14 +103,14 @@ StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& opt
       ops.boundary_nodes.push_back(static_cast<std::int32_t>(i));
     }
   }
-  // Their momentum balance: the adjoint of the stress points' gradient, with the node's own
+  // Their closure: the lumped adjoint of the stress points' operator, with the node's own
   // half-step value (which carries the face tractions) where it has one (docs/theory.md §5.3).
   std::vector<std::int32_t> own_column(incomplete.size(), -1);
   for (std::size_t r = 0; r < incomplete.size(); ++r)
     if (ops.node_to_boundary_row[static_cast<std::size_t>(incomplete[r])] >= 0)
       own_column[r] = n_points + incomplete[r];
-  ops.momentum_closure = build_adjoint_gradient(ops.nodes_to_points, nodes.stress_points.volume,
-                                                incomplete, own_column);
+  ops.incomplete_closure = build_adjoint_operator(ops.nodes_to_points, nodes.stress_points.volume,
+                                                  incomplete, own_column);
 
   WeightTable& table = ops.points_to_nodes;
   table.dimension = d;
@@ -204,8 +205,17 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
   internal_parity_.assign(static_cast<std::size_t>(nk), kEven);
   // Every field but the velocity enters the flux rate only through the momentum balance.
   momentum_flux_.assign(static_cast<std::size_t>(nf), 1);
-  for (int a = 0; a < d; ++a)
-    momentum_flux_[static_cast<std::size_t>(model.velocity_field(a))] = 0;
+  velocity_gradient_fields_.assign(static_cast<std::size_t>(nf * d), 0);
+  for (int a = 0; a < d; ++a) {
+    const int v = model.velocity_field(a);
+    momentum_flux_[static_cast<std::size_t>(v)] = 0;
+    for (int c = 0; c < d; ++c)
+      velocity_gradient_fields_[static_cast<std::size_t>(v * d + c)] = 1;
+  }
+  for (int f = 0; f < nf; ++f)
+    for (int c = 0; c < d; ++c)
+      gradient_parities_.push_back(
+          static_cast<Parity>(model.parities()[static_cast<std::size_t>(f)] ^ (1u << c)));
   for (int f = 0; f < nf; ++f) {
     const bool velocity = momentum_flux_[static_cast<std::size_t>(f)] == 0;
     if (operators_.hourglass_fields == HourglassFields::All || velocity) {
@@ -217,6 +227,8 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
   point_gradient_ = FieldArray(nf * d, nv);
   point_rate_ = FieldArray(nf, nv);
   point_internal_ = FieldArray(nk, nv);
+  point_velocity_ = FieldArray(d, nv);
+  closure_increment_ = FieldArray(nf * d, operators_.incomplete_closure.target.size());
   boundary_values_ = FieldArray(nf, nb);
   boundary_start_ = FieldArray(nf, nb);
   boundary_gradient_ = FieldArray(nf * d, nb);
@@ -259,6 +271,10 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
   if (model_.internal_count() > 0)
     apply_operator(operators_.nodes_to_points, state.internal, internal_parity_, &point_internal_,
                    nullptr);
+  for (int a = 0; a < model_.dimension(); ++a) {  // kept for the closure of step 2
+    const int v = model_.velocity_field(a);
+    std::copy_n(half_step_.field(v), nodes_.stress_points.size(), point_velocity_.field(a));
+  }
   model_.flux_rate(nodes_.stress_point_material, point_gradient_, point_rate_);
   model_.advance(nodes_.stress_point_material, point_rate_, state.time, 0.5 * dt, half_step_,
                  point_internal_);
@@ -301,8 +317,7 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   // Step 2: gradient of the half-step values at the SPH nodes, full step from Phi^n.
   apply_operator(operators_.points_to_nodes, half_step_, model_.parities(), nullptr,
                  &node_gradient_);
-  apply_adjoint_gradient(operators_.momentum_closure, half_step_, model_.parities(), momentum_flux_,
-                         node_gradient_);
+  close_incomplete_nodes(state);
   model_.flux_rate(nodes_.node_material, node_gradient_, node_rate_);
   const auto& boundary = operators_.boundary_nodes;
   const int nf = model_.field_count();
@@ -328,6 +343,46 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
     filter_hourglass(state.fields);
     conditions_.apply(state.time + dt, state.fields);
   }
+}
+
+void RkTaylorStep::close_incomplete_nodes(const State& state) {
+  // docs/theory.md §5.3. Momentum (eq. 5.2): the adjoint gradient of every field but the velocity.
+  const AdjointOperator& closure = operators_.incomplete_closure;
+  const auto parity = model_.parities();
+  apply_adjoint_gradient(closure, half_step_, parity, momentum_flux_, node_gradient_);
+  // Strain rate (eq. 5.3): of the step-2 velocity gradient G2(v^{n+1/2}), keep the part of the
+  // half-step increments, G2(v^{n+1/2}) - G2(I v^n, v^n), and take the level-n part as the
+  // lumped average of the stress points' own gradients of v^n.
+  const WeightTable& step2 = operators_.points_to_nodes;
+  const int d = model_.dimension();
+  const std::size_t nv = nodes_.stress_points.size();
+  for (std::size_t r = 0; r < closure.target.size(); ++r) {
+    const auto node = static_cast<std::size_t>(closure.target[r]);
+    for (int a = 0; a < d; ++a) {
+      const int v = model_.velocity_field(a);
+      const auto odd = static_cast<unsigned>(parity[static_cast<std::size_t>(v)]);
+      for (int c = 0; c < d; ++c) {
+        double level_n = 0.0;
+        for (auto k = static_cast<std::size_t>(step2.row_start[node]);
+             k < static_cast<std::size_t>(step2.row_start[node + 1]); ++k) {
+          const auto source = static_cast<std::size_t>(step2.source[k]);
+          const double value =
+              source < nv ? point_velocity_(a, source) : state.fields(v, source - nv);
+          const bool flip = step2.has_reflections && (std::popcount(step2.reflection[k] & odd) & 1);
+          level_n += step2.gradient[static_cast<std::size_t>(c)][k] * (flip ? -value : value);
+        }
+        closure_increment_(v * d + c, r) = node_gradient_(v * d + c, node) - level_n;
+      }
+    }
+  }
+  apply_adjoint_interpolation(closure, point_gradient_, gradient_parities_,
+                              velocity_gradient_fields_, node_gradient_);
+  for (std::size_t r = 0; r < closure.target.size(); ++r)
+    for (int a = 0; a < d; ++a)
+      for (int c = 0; c < d; ++c) {
+        const int g = model_.velocity_field(a) * d + c;
+        node_gradient_(g, static_cast<std::size_t>(closure.target[r])) += closure_increment_(g, r);
+      }
 }
 
 void RkTaylorStep::project_free_faces(const FieldArray& start, FieldArray& values,

@@ -3,8 +3,9 @@
 //   1b  boundary nodes: Phi^{n+1/2} = Phi^n + RK[frozen R(G_SS(Phi^n))] over dt/2, then BCs
 //   2   SPH nodes:      Phi^{n+1}   = Phi^n + RK[frozen R(G(Phi^{n+1/2}))] over dt
 //   3   boundary conditions at t + dt, hourglass filter (2D), again the conditions, displacement.
-// The momentum balance of nodes whose cells are incomplete is the adjoint of the stress points'
-// velocity gradient (docs/theory.md §5.3).
+// At nodes whose cells are incomplete the momentum balance is the adjoint of the stress points'
+// velocity gradient, and the level-n part of the strain rate is the lumped average of theirs
+// (docs/theory.md §5.3).
 // The operators are weight tables built once (positions are fixed in V1 and V3).
 #pragma once
 
@@ -15,7 +16,7 @@
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/models/physics_model.hpp"
 #include "rktsph/simulation/state.hpp"
-#include "rktsph/sph/adjoint_gradient.hpp"
+#include "rktsph/sph/adjoint_operator.hpp"
 #include "rktsph/sph/operators.hpp"
 
 namespace rktsph {
@@ -38,9 +39,9 @@ struct StepOperators {
   WeightTable boundary_gradient;  ///< step 1b: rows = boundary_nodes, columns = SPH nodes
   std::vector<std::int32_t> boundary_nodes;        ///< nodes with incomplete stencils (step 1b)
   std::vector<std::int32_t> node_to_boundary_row;  ///< -1 for interior nodes
-  /// Step 2 momentum closure of every node whose 2^d cells are not all present (the boundary
-  /// nodes and the re-entrant corners): the adjoint of nodes_to_points (docs/theory.md eq. 5.2).
-  AdjointGradient momentum_closure;
+  /// Step 2 closure of every node whose 2^d cells are not all present (the boundary nodes and the
+  /// re-entrant corners): the lumped adjoint of nodes_to_points (docs/theory.md eqs. 5.2, 5.3).
+  AdjointOperator incomplete_closure;
   bool hourglass_filter = false;
   double hourglass_kappa = 0.0;
   HourglassFields hourglass_fields = HourglassFields::Velocity;
@@ -83,6 +84,7 @@ class RkTaylorStep {
   void step_boundary_nodes(const State& state, double dt);
   void step_nodes(State& state, double dt);
   void project_free_faces(const FieldArray& start, FieldArray& values, bool boundary_rows) const;
+  void close_incomplete_nodes(const State& state);
 
   const PhysicsModel& model_;
   const NodeSets& nodes_;
@@ -93,7 +95,9 @@ class RkTaylorStep {
   std::vector<std::int32_t> projected_rows_;
   std::vector<Parity> internal_parity_;      // boundary rows whose stress increments are projected
   std::vector<std::uint8_t> momentum_flux_;  // 1 for the fields whose gradient feeds the momentum
-  std::vector<int> filtered_fields_;         // the fields the hourglass filter acts on
+  std::vector<std::uint8_t> velocity_gradient_fields_;  // 1 for the gradient fields of v
+  std::vector<Parity> gradient_parities_;               // of each gradient field f * d + c
+  std::vector<int> filtered_fields_;                    // the fields the hourglass filter acts on
   std::vector<Parity> filtered_parities_;
 
   // Scratch, allocated once.
@@ -101,6 +105,8 @@ class RkTaylorStep {
   FieldArray point_gradient_;
   FieldArray point_rate_;
   FieldArray point_internal_;
+  FieldArray point_velocity_;     // I(v^n) at the stress points (axis a), before their half step
+  FieldArray closure_increment_;  // step-2 velocity gradient of the half-step increments
   FieldArray boundary_values_;
   FieldArray boundary_start_;
   FieldArray boundary_gradient_;

@@ -1,4 +1,4 @@
-#include "rktsph/sph/adjoint_gradient.hpp"
+#include "rktsph/sph/adjoint_operator.hpp"
 
 #include <bit>
 #include <stdexcept>
@@ -6,13 +6,13 @@
 
 namespace rktsph {
 
-AdjointGradient build_adjoint_gradient(const WeightTable& forward,
+AdjointOperator build_adjoint_operator(const WeightTable& forward,
                                        std::span<const double> row_volume,
                                        std::span<const std::int32_t> target,
                                        std::span<const std::int32_t> self_column) {
   if (!forward.weight_start.empty() || !forward.has_gradient ||
       row_volume.size() != forward.rows() || self_column.size() != target.size())
-    throw std::invalid_argument("build_adjoint_gradient: inconsistent forward table or sizes");
+    throw std::invalid_argument("build_adjoint_operator: inconsistent forward table or sizes");
   const int d = forward.dimension;
   std::int32_t columns = 0;
   for (std::int32_t s : forward.source)
@@ -28,9 +28,10 @@ AdjointGradient build_adjoint_gradient(const WeightTable& forward,
     std::int32_t point;
     std::uint8_t reflection;
     double gradient[3];
+    double lumped_weight;
   };
   std::vector<std::vector<Entry>> entries(target.size());
-  AdjointGradient adjoint;
+  AdjointOperator adjoint;
   adjoint.lumped_volume.assign(target.size(), 0.0);
   for (std::size_t p = 0; p < forward.rows(); ++p)
     for (auto k = static_cast<std::size_t>(forward.row_start[p]);
@@ -41,7 +42,8 @@ AdjointGradient build_adjoint_gradient(const WeightTable& forward,
       adjoint.lumped_volume[row] += row_volume[p] * forward.interpolation[k];
       Entry e{static_cast<std::int32_t>(p),
               forward.has_reflections ? forward.reflection[k] : std::uint8_t{0},
-              {0.0, 0.0, 0.0}};
+              {0.0, 0.0, 0.0},
+              row_volume[p] * forward.interpolation[k]};
       for (int c = 0; c < d; ++c)
         e.gradient[c] = -row_volume[p] * forward.gradient[static_cast<std::size_t>(c)][k];
       entries[row].push_back(e);
@@ -53,13 +55,13 @@ AdjointGradient build_adjoint_gradient(const WeightTable& forward,
   for (std::size_t r = 0; r < target.size(); ++r) {
     const double volume = adjoint.lumped_volume[r];
     if (entries[r].empty() || !(volume > 0.0))
-      throw std::invalid_argument("build_adjoint_gradient: node " + std::to_string(target[r]) +
+      throw std::invalid_argument("build_adjoint_operator: node " + std::to_string(target[r]) +
                                   " is in no forward row (zero lumped volume)");
     for (const Entry& e : entries[r]) {
       table.source.push_back(e.point);
       table.reflection.push_back(e.reflection);
       table.has_reflections = table.has_reflections || e.reflection != 0;
-      table.interpolation.push_back(0.0);
+      table.interpolation.push_back(e.lumped_weight / volume);
       for (int c = 0; c < d; ++c)
         table.gradient[static_cast<std::size_t>(c)].push_back(e.gradient[c] / volume);
     }
@@ -70,7 +72,34 @@ AdjointGradient build_adjoint_gradient(const WeightTable& forward,
   return adjoint;
 }
 
-void apply_adjoint_gradient(const AdjointGradient& adjoint, const FieldArray& in,
+void apply_adjoint_interpolation(const AdjointOperator& adjoint, const FieldArray& in,
+                                 std::span<const Parity> parity,
+                                 std::span<const std::uint8_t> selected, FieldArray& out) {
+  const WeightTable& table = adjoint.table;
+  const int field_count = in.field_count();
+  if (static_cast<int>(parity.size()) != field_count ||
+      static_cast<int>(selected.size()) != field_count || out.field_count() < field_count)
+    throw std::invalid_argument(
+        "apply_adjoint_interpolation: field count, parity and outputs "
+        "disagree");
+  for (std::size_t r = 0; r < table.rows(); ++r) {
+    const auto node = static_cast<std::size_t>(adjoint.target[r]);
+    for (int f = 0; f < field_count; ++f) {
+      if (!selected[static_cast<std::size_t>(f)]) continue;
+      const double* values = in.field(f);
+      const auto odd = static_cast<unsigned>(parity[static_cast<std::size_t>(f)]);
+      double sum = 0.0;
+      for (auto k = static_cast<std::size_t>(table.row_start[r]);
+           k < static_cast<std::size_t>(table.row_start[r + 1]); ++k) {
+        const double sign = (std::popcount(table.reflection[k] & odd) & 1) ? -1.0 : 1.0;
+        sum += table.interpolation[k] * sign * values[table.source[k]];
+      }
+      out.field(f)[node] = sum;
+    }
+  }
+}
+
+void apply_adjoint_gradient(const AdjointOperator& adjoint, const FieldArray& in,
                             std::span<const Parity> parity, std::span<const std::uint8_t> selected,
                             FieldArray& out_gradient) {
   const WeightTable& table = adjoint.table;

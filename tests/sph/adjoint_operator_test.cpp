@@ -1,8 +1,9 @@
-// The adjoint gradient (docs/theory.md eq. 5.2): the discrete power identity with the stress
-// points' velocity gradient, with and without mirror images; equality with the corrected SPH
-// divergence at complete interior stencils (h = 0.75 dx); and, through the step, an exact static
-// stress state under a face traction is a fixed point.
-#include "rktsph/sph/adjoint_gradient.hpp"
+// The lumped adjoint of the stress points' operator (docs/theory.md eqs. 5.2, 5.3): the discrete
+// power identity with the velocity gradient and the transpose identity of the interpolation, with
+// and without mirror images; equality with the corrected SPH divergence at complete interior
+// stencils (h = 0.75 dx); and, through the step, an exact static stress state under a face
+// traction is a fixed point.
+#include "rktsph/sph/adjoint_operator.hpp"
 
 #include <gtest/gtest.h>
 
@@ -44,8 +45,8 @@ double power_defect(double h, const std::vector<MirrorPlane>& mirrors, double* s
   for (std::size_t i = 0; i < all.size(); ++i)
     all[i] = static_cast<std::int32_t>(i);
   const std::vector<std::int32_t> no_own_value(all.size(), -1);
-  const AdjointGradient adjoint =
-      build_adjoint_gradient(forward, nodes.stress_points.volume, all, no_own_value);
+  const AdjointOperator adjoint =
+      build_adjoint_operator(forward, nodes.stress_points.volume, all, no_own_value);
   EXPECT_EQ(adjoint.table.has_reflections, !mirrors.empty());
 
   std::mt19937 random(7);
@@ -74,17 +75,38 @@ double power_defect(double h, const std::vector<MirrorPlane>& mirrors, double* s
     const double div_y = divergence_terms(4, r) + divergence_terms(3, r);  // xy,x + yy,y
     nodal_power += adjoint.lumped_volume[r] * (velocity(0, r) * div_x + velocity(1, r) * div_y);
   }
+  // The interpolation's transpose: sum_P V_P q_P (I f)_P = sum_n V_n f_n (I^T q)_n, for the odd
+  // field v_x and the even sigma_xx alike.
+  FieldArray interpolated(2, nodes.stress_points.size());
+  apply_operator(forward, velocity, velocity_parity, &interpolated, nullptr);
+  FieldArray transposed(2, nodes.sph_nodes.size());
+  const std::vector<std::uint8_t> both(2, 1);
+  FieldArray point_values(2, nodes.stress_points.size());
+  for (std::size_t p = 0; p < nodes.stress_points.size(); ++p)
+    for (int f = 0; f < 2; ++f)
+      point_values(f, p) = stress(f, p);
+  apply_adjoint_interpolation(adjoint, point_values, velocity_parity, both, transposed);
+  for (int f = 0; f < 2; ++f) {
+    double on_points = 0.0, on_nodes = 0.0, size = 0.0;
+    for (std::size_t p = 0; p < nodes.stress_points.size(); ++p) {
+      on_points += nodes.stress_points.volume[p] * point_values(f, p) * interpolated(f, p);
+      size += nodes.stress_points.volume[p] * std::abs(point_values(f, p) * interpolated(f, p));
+    }
+    for (std::size_t r = 0; r < all.size(); ++r)
+      on_nodes += adjoint.lumped_volume[r] * velocity(f, r) * transposed(f, r);
+    EXPECT_NEAR(on_points, on_nodes, 1e-12 * size) << "field " << f;
+  }
   return stress_power + nodal_power;
 }
 
-TEST(AdjointGradient, PowerIdentityHoldsOnAFreeLattice) {
+TEST(AdjointOperator, PowerIdentityHoldsOnAFreeLattice) {
   double scale = 0.0;
   const double defect = power_defect(0.75, {}, &scale);
   EXPECT_GT(scale, 1.0);
   EXPECT_NEAR(defect, 0.0, 1e-12 * scale);
 }
 
-TEST(AdjointGradient, PowerIdentityHoldsWithReflectedEntries) {
+TEST(AdjointOperator, PowerIdentityHoldsWithReflectedEntries) {
   // h = 1.0 dx reaches the images of the second column across x = 0 and y = 0.
   double scale = 0.0;
   const double defect = power_defect(1.0, {MirrorPlane{0, 0.0}, MirrorPlane{1, 0.0}}, &scale);
@@ -110,7 +132,7 @@ numerics: {hourglass: {enabled: false}}
 time: {end: 1.0}
 )";
 
-TEST(AdjointGradient, EqualsTheCorrectedDivergenceAtCompleteStencils) {
+TEST(AdjointOperator, EqualsTheCorrectedDivergenceAtCompleteStencils) {
   Simulation simulation(read_case_text(kBlock, "block.yaml"));
   const StepOperators& ops = simulation.step().operators();
   const NodeSets& nodes = simulation.nodes();
@@ -118,7 +140,7 @@ TEST(AdjointGradient, EqualsTheCorrectedDivergenceAtCompleteStencils) {
   std::vector<std::int32_t> all(ns);
   for (std::size_t i = 0; i < ns; ++i)
     all[i] = static_cast<std::int32_t>(i);
-  const AdjointGradient adjoint = build_adjoint_gradient(
+  const AdjointOperator adjoint = build_adjoint_operator(
       ops.nodes_to_points, nodes.stress_points.volume, all, std::vector<std::int32_t>(ns, -1));
   std::mt19937 random(11);
   FieldArray values = random_fields(1, nv + ns, random);
@@ -138,7 +160,7 @@ TEST(AdjointGradient, EqualsTheCorrectedDivergenceAtCompleteStencils) {
   EXPECT_GT(interior, 10);
 }
 
-TEST(AdjointGradient, UniformStressUnderItsTractionIsAFixedPointOfTheStep) {
+TEST(AdjointOperator, UniformStressUnderItsTractionIsAFixedPointOfTheStep) {
   // sigma_yy = -5 kPa everywhere balances the top traction exactly; sigma_xx = sigma_zz = K0
   // sigma_yy keeps the rollers and the fixed base free of strain. The closure must see the
   // traction through the node's own half-step value (docs/theory.md eq. 5.2).
