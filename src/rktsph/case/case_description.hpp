@@ -122,8 +122,10 @@ struct PoreFluidSpec {
 };
 
 /// The fields the hourglass filter acts on (docs/theory.md §3.3).
+/// Unset in the case: Velocity where each stress point's stencil is its cell's corners, All
+/// with wider stencils (where the velocity-only filter is unstable).
 enum class HourglassFields {
-  Velocity,  ///< the velocity only (default): equilibrium stress states stay fixed points
+  Velocity,  ///< the velocity only: equilibrium stress states stay fixed points
   All,       ///< every field (prototype R6); the total normal stress in the saturated model
 };
 
@@ -139,8 +141,8 @@ struct NumericsSpec {
   bool hourglass_filter = true;  ///< R6, default on in 2D, ignored in 1D
   double hourglass_kappa = 0.1;
   double hourglass_h_over_dx = 1.3;
-  HourglassFields hourglass_fields = HourglassFields::Velocity;
-  double artificial_viscosity = 0.0;  ///< alpha of R7, 0 = off
+  std::optional<HourglassFields> hourglass_fields;  ///< unset: from the stencil width
+  double artificial_viscosity = 0.0;                ///< alpha of R7, 0 = off
   SourceLocation where;
 };
 

@@ -944,8 +944,10 @@ void emit_numerics(YAML::Emitter& out, const NumericsSpec& numerics) {
   out << YAML::Key << "enabled" << YAML::Value << (numerics.hourglass_filter ? "true" : "false");
   out << YAML::Key << "kappa" << YAML::Value << number(numerics.hourglass_kappa);
   out << YAML::Key << "h_over_dx" << YAML::Value << number(numerics.hourglass_h_over_dx);
-  out << YAML::Key << "fields" << YAML::Value
-      << (numerics.hourglass_fields == HourglassFields::All ? "all" : "velocity");
+  if (numerics.hourglass_fields) {
+    out << YAML::Key << "fields" << YAML::Value
+        << (*numerics.hourglass_fields == HourglassFields::All ? "all" : "velocity");
+  }
   out << YAML::EndMap;
   out << YAML::Key << "artificial_viscosity" << YAML::Value
       << number(numerics.artificial_viscosity);

@@ -36,6 +36,15 @@ class PhysicsModel {
   /// Index of stress component (i, j) among the unknowns, or -1 if it is not carried.
   virtual int stress_field(int i, int j) const = 0;
 
+  /// True for the unknowns whose gradient enters the flux rate only through the momentum balance
+  /// (stress, pore pressure); the velocity's gradient drives the constitutive rates instead. The
+  /// step closes the two kinds differently at incomplete nodes (docs/theory.md §5.3).
+  virtual bool feeds_momentum_only(int field) const {
+    for (int a = 0; a < dimension(); ++a)
+      if (velocity_field(a) == field) return false;
+    return true;
+  }
+
   /// Index of the pore pressure among the unknowns, or -1 for a dry model.
   virtual int pore_pressure_field() const { return -1; }
   /// Biot coefficient alpha of the saturated model (0 for a dry one): total stress

@@ -83,9 +83,17 @@ Simulation::Simulation(CaseDescription description) : description_(std::move(des
   options.hourglass_h_over_dx = numerics.hourglass_h_over_dx;
   options.hourglass_fields = numerics.hourglass_fields;
   options.artificial_viscosity = numerics.artificial_viscosity;
-  step_ = std::make_unique<RkTaylorStep>(
-      *model_, nodes_, build_step_operators(nodes_, options, conditions_->mirror_planes()),
-      *conditions_);
+  StepOperators operators = build_step_operators(nodes_, options, conditions_->mirror_planes());
+  if (numerics.hourglass_fields == HourglassFields::Velocity && !operators.compact_stencils &&
+      numerics.hourglass_filter && nodes_.dimension >= 2)
+    throw InputError(numerics.where, "numerics.hourglass.fields", "velocity",
+                     fmt::format("with h_over_dx = {} a stress point's stencil reaches beyond its "
+                                 "cell's corners, and the velocity-only filter then leaves the "
+                                 "step unstable (docs/theory.md §3.3)",
+                                 numerics.h_over_dx),
+                     "all, or h_over_dx below 0.79 (cubic spline; 0.52 for the quintic spline "
+                     "and the Gaussian)");
+  step_ = std::make_unique<RkTaylorStep>(*model_, nodes_, std::move(operators), *conditions_);
   // dt = C dx / c_p (docs/theory.md §2.5), constant: the operators are fixed.
   time_step_ = numerics.time_step ? *numerics.time_step
                                   : numerics.courant * nodes_.spacing / model_->max_wave_speed();

@@ -1,5 +1,6 @@
 #include "rktsph/sph/adjoint_operator.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <stdexcept>
 #include <string>

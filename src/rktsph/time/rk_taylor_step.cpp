@@ -50,10 +50,13 @@ int occupied_cells(std::span<const StencilSource> stencil, const std::array<doub
 // while the self-including boundary closure is unstable (spectral radius 1.2-1.45 per step on an
 // L-shaped lattice at C = 0.3-0.9; the corner lies on no face, so nothing constrains its
 // half-step).
+bool is_incomplete(int occupied, int dimension) {
+  return occupied < (1 << dimension);
+}
+
 bool needs_boundary_half_step(int occupied, int dimension) {
-  const int all = 1 << dimension;
-  const bool reentrant_corner = dimension == 2 && occupied == all - 1;
-  return occupied < all && !reentrant_corner;
+  const bool reentrant_corner = dimension == 2 && occupied == (1 << dimension) - 1;
+  return is_incomplete(occupied, dimension) && !reentrant_corner;
 }
 
 }  // namespace
@@ -94,15 +97,23 @@ StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& opt
   std::vector<std::vector<StencilSource>> stencils(n);
   ops.node_to_boundary_row.assign(n, -1);
   std::vector<std::int32_t> incomplete;  // nodes whose cells are not all present
+  std::vector<int> occupied_of(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     gather_stencil(nodes.sph_nodes.point(i), point_cells, operator_options, -1, stencils[i]);
     const int occupied = occupied_cells(stencils[i], nodes.sph_nodes.point(i), d, dx);
-    if (occupied < (1 << d)) incomplete.push_back(static_cast<std::int32_t>(i));
+    occupied_of[i] = occupied;
+    if (is_incomplete(occupied, d)) incomplete.push_back(static_cast<std::int32_t>(i));
     if (needs_boundary_half_step(occupied, d)) {
       ops.node_to_boundary_row[i] = static_cast<std::int32_t>(ops.boundary_nodes.size());
       ops.boundary_nodes.push_back(static_cast<std::int32_t>(i));
     }
   }
+  for (std::size_t i = 0; i < n; ++i)
+    if (occupied_of[i] == 0)
+      throw RunError(fmt::format(
+          "the SPH node at {} belongs to no lattice cell (a shape vertex or a one-node-wide strip "
+          "that touches no cell), so nothing moves it; widen the shape to whole cells",
+          describe_point(nodes.sph_nodes, i)));
   // Their closure: the lumped adjoint of the stress points' operator, with the node's own
   // half-step value (which carries the face tractions) where it has one (docs/theory.md §5.3).
   std::vector<std::int32_t> own_column(incomplete.size(), -1);
@@ -167,7 +178,15 @@ StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& opt
   // wider support, so that linear fields pass unchanged up to the boundary (prototype R6).
   ops.hourglass_filter = options.hourglass_filter && d >= 2 && options.hourglass_kappa > 0.0;
   ops.hourglass_kappa = options.hourglass_kappa;
-  ops.hourglass_fields = options.hourglass_fields;
+  ops.compact_stencils = true;
+  for (std::size_t p = 0; p < ops.nodes_to_points.rows(); ++p)
+    ops.compact_stencils =
+        ops.compact_stencils &&
+        ops.nodes_to_points.row_start[p + 1] - ops.nodes_to_points.row_start[p] <= (1 << d);
+  // With wider stencils the velocity-only filter leaves the step unstable (spectral radius
+  // 1.00003-1.001 at h = 1.0-1.3 dx); the filter on every field keeps it below 1 (§3.3).
+  ops.hourglass_fields = options.hourglass_fields.value_or(
+      ops.compact_stencils ? HourglassFields::Velocity : HourglassFields::All);
   ops.viscosity_length = options.artificial_viscosity * dx;
   if (ops.hourglass_filter) {
     OperatorOptions filter_options = operator_options;
@@ -203,15 +222,13 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
       projected_rows_.push_back(operators_.node_to_boundary_row[static_cast<std::size_t>(node)]);
   }
   internal_parity_.assign(static_cast<std::size_t>(nk), kEven);
-  // Every field but the velocity enters the flux rate only through the momentum balance.
-  momentum_flux_.assign(static_cast<std::size_t>(nf), 1);
+  momentum_flux_.assign(static_cast<std::size_t>(nf), 0);
+  for (int f = 0; f < nf; ++f)
+    momentum_flux_[static_cast<std::size_t>(f)] = model.feeds_momentum_only(f) ? 1 : 0;
   velocity_gradient_fields_.assign(static_cast<std::size_t>(nf * d), 0);
-  for (int a = 0; a < d; ++a) {
-    const int v = model.velocity_field(a);
-    momentum_flux_[static_cast<std::size_t>(v)] = 0;
+  for (int a = 0; a < d; ++a)
     for (int c = 0; c < d; ++c)
-      velocity_gradient_fields_[static_cast<std::size_t>(v * d + c)] = 1;
-  }
+      velocity_gradient_fields_[static_cast<std::size_t>(model.velocity_field(a) * d + c)] = 1;
   for (int f = 0; f < nf; ++f)
     for (int c = 0; c < d; ++c)
       gradient_parities_.push_back(

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "rktsph/boundary/boundary_conditions.hpp"
@@ -28,8 +29,8 @@ struct StepOptions {
   bool hourglass_filter = true;  // ignored in 1D, where midpoint stress points have no such mode
   double hourglass_kappa = 0.1;
   double hourglass_h_over_dx = 1.3;
-  HourglassFields hourglass_fields = HourglassFields::Velocity;
-  double artificial_viscosity = 0.0;  // alpha of prototype R7; 0 = off
+  std::optional<HourglassFields> hourglass_fields;  // unset: Velocity on compact stencils, else All
+  double artificial_viscosity = 0.0;                // alpha of prototype R7; 0 = off
 };
 
 /// The operator tables of the step and the classification of nodes they imply.
@@ -45,6 +46,9 @@ struct StepOperators {
   bool hourglass_filter = false;
   double hourglass_kappa = 0.0;
   HourglassFields hourglass_fields = HourglassFields::Velocity;
+  /// Every stress point's stencil is its own cell's corners (h small enough): the lattice
+  /// operators then commute in the interior (docs/theory.md §5.3).
+  bool compact_stencils = false;
   WeightTable filter_to_points;  ///< first-order round trip of the filter (prototype R6)
   WeightTable filter_to_nodes;
   double viscosity_length = 0.0;  ///< alpha * dx of the artificial viscosity (0 = off)
