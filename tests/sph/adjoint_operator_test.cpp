@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "../support/elastic_block.hpp"
 #include "../support/lattices.hpp"
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
@@ -85,7 +86,7 @@ double power_defect(double h, const std::vector<MirrorPlane>& mirrors, double* s
   for (std::size_t p = 0; p < nodes.stress_points.size(); ++p)
     for (int f = 0; f < 2; ++f)
       point_values(f, p) = stress(f, p);
-  apply_adjoint_interpolation(adjoint, point_values, velocity_parity, both, transposed);
+  add_adjoint_interpolation(adjoint, point_values, velocity_parity, both, transposed);
   for (int f = 0; f < 2; ++f) {
     double on_points = 0.0, on_nodes = 0.0, size = 0.0;
     for (std::size_t p = 0; p < nodes.stress_points.size(); ++p) {
@@ -114,26 +115,19 @@ TEST(AdjointOperator, PowerIdentityHoldsWithReflectedEntries) {
   EXPECT_NEAR(defect, 0.0, 1e-12 * scale);
 }
 
-const char* kBlock = R"(
-name: block
-dimension: 2
-plane: strain
-geometry:
-  spacing: 0.5
-  shapes: [{rectangle: {min: [0, 0], max: [4, 3]}, material: soil}]
-materials:
-  soil: {model: linear_elastic, density: 2000.0, young_modulus: 1.0e7, poisson_ratio: 0.3}
-boundary_conditions:
-  - {group: xmin, roller: x}
-  - {group: xmax, roller: x}
-  - {group: ymin, fixed: true}
-  - {group: ymax, traction: {y: -5000.0}}
-numerics: {hourglass: {enabled: false}}
-time: {end: 1.0}
-)";
+// A 4 x 3 m block at dx = 0.5 m: rollers on the sides, fixed base, 5 kPa pressing on the top.
+std::string loaded_block() {
+  test::ElasticBlock block;
+  block.spacing = 0.5;
+  block.shapes = test::ElasticBlock::rectangle(4.0, 3.0);
+  block.conditions = {"{group: xmin, roller: x}", "{group: xmax, roller: x}",
+                      "{group: ymin, fixed: true}", "{group: ymax, traction: {y: -5000.0}}"};
+  block.numerics = "{hourglass: {enabled: false}}";
+  return block.text();
+}
 
 TEST(AdjointOperator, EqualsTheCorrectedDivergenceAtCompleteStencils) {
-  Simulation simulation(read_case_text(kBlock, "block.yaml"));
+  Simulation simulation(read_case_text(loaded_block(), "block.yaml"));
   const StepOperators& ops = simulation.step().operators();
   const NodeSets& nodes = simulation.nodes();
   const std::size_t nv = nodes.stress_points.size(), ns = nodes.sph_nodes.size();
@@ -164,7 +158,7 @@ TEST(AdjointOperator, UniformStressUnderItsTractionIsAFixedPointOfTheStep) {
   // sigma_yy = -5 kPa everywhere balances the top traction exactly; sigma_xx = sigma_zz = K0
   // sigma_yy keeps the rollers and the fixed base free of strain. The closure must see the
   // traction through the node's own half-step value (docs/theory.md eq. 5.2).
-  Simulation simulation(read_case_text(kBlock, "block.yaml"));
+  Simulation simulation(read_case_text(loaded_block(), "block.yaml"));
   State& state = simulation.state();
   const DrySolid& model = simulation.model();
   const double k0 = 0.3 / 0.7;

@@ -7,27 +7,38 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <vector>
 
 #include "rktsph/simulation/simulation.hpp"
 
 namespace rktsph::test {
 
-inline double spectral_radius(Simulation& simulation) {
+/// The matrix of the one-step map on the first `size` unknowns (field-major), built column by
+/// column; unknown k is measured in units of scale[k] (1 when `scale` is empty).
+inline Eigen::MatrixXd step_matrix(Simulation& simulation, Eigen::Index size,
+                                   const std::vector<double>& scale = {}) {
   State& state = simulation.state();
-  const int fields = state.fields.field_count() - 1;
-  const std::size_t n = state.fields.point_count();
-  const auto size = static_cast<Eigen::Index>(fields * n);
+  auto unit = [&](Eigen::Index k) {
+    return scale.empty() ? 1.0 : scale[static_cast<std::size_t>(k)];
+  };
   Eigen::MatrixXd matrix(size, size);
   for (Eigen::Index column = 0; column < size; ++column) {
     std::fill(state.fields.data().begin(), state.fields.data().end(), 0.0);
-    state.fields.data()[static_cast<std::size_t>(column)] = 1.0;
+    state.fields.data()[static_cast<std::size_t>(column)] = unit(column);
     state.time = 0.0;
     simulation.step().advance(state, simulation.time_step());
     for (Eigen::Index row = 0; row < size; ++row)
-      matrix(row, column) = state.fields.data()[static_cast<std::size_t>(row)];
+      matrix(row, column) = state.fields.data()[static_cast<std::size_t>(row)] / unit(row);
   }
+  return matrix;
+}
+
+inline double spectral_radius(Simulation& simulation) {
+  const FieldArray& fields = simulation.state().fields;
+  const auto size = static_cast<Eigen::Index>((fields.field_count() - 1) * fields.point_count());
   using LongMatrix = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
-  const Eigen::EigenSolver<LongMatrix> solver(matrix.cast<long double>(), false);
+  const Eigen::EigenSolver<LongMatrix> solver(step_matrix(simulation, size).cast<long double>(),
+                                              false);
   return static_cast<double>(solver.eigenvalues().cwiseAbs().maxCoeff());
 }
 
@@ -36,21 +47,14 @@ inline double spectral_radius(Simulation& simulation) {
 /// the stresses scaled by `impedance` (rho c_p) so that all unknowns are of one size. Zero when
 /// the only velocity a damped body can keep is rest (docs/theory.md §5.3).
 inline double velocity_in_fixed_points(Simulation& simulation, double impedance) {
-  State& state = simulation.state();
-  const std::size_t n = state.fields.point_count();
-  const auto size = static_cast<Eigen::Index>(state.fields.field_count() * n);
-  const auto velocities = static_cast<Eigen::Index>(simulation.model().dimension() * n);
-  auto scale = [&](Eigen::Index k) { return k < velocities ? 1.0 : impedance; };
-  Eigen::MatrixXd identity_minus_step = Eigen::MatrixXd::Identity(size, size);
-  for (Eigen::Index column = 0; column < size; ++column) {
-    std::fill(state.fields.data().begin(), state.fields.data().end(), 0.0);
-    state.fields.data()[static_cast<std::size_t>(column)] = scale(column);
-    state.time = 0.0;
-    simulation.step().advance(state, simulation.time_step());
-    for (Eigen::Index row = 0; row < size; ++row)
-      identity_minus_step(row, column) -=
-          state.fields.data()[static_cast<std::size_t>(row)] / scale(row);
-  }
+  const FieldArray& fields = simulation.state().fields;
+  const auto size = static_cast<Eigen::Index>(fields.field_count() * fields.point_count());
+  const auto velocities =
+      static_cast<Eigen::Index>(simulation.model().dimension() * fields.point_count());
+  std::vector<double> scale(static_cast<std::size_t>(size), impedance);
+  std::fill_n(scale.begin(), velocities, 1.0);
+  const Eigen::MatrixXd identity_minus_step =
+      Eigen::MatrixXd::Identity(size, size) - step_matrix(simulation, size, scale);
   Eigen::FullPivLU<Eigen::MatrixXd> lu(identity_minus_step);
   lu.setThreshold(1e-9);
   const Eigen::MatrixXd kernel = lu.kernel();

@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 
+#include "../support/elastic_block.hpp"
 #include "../support/step_matrix.hpp"
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
@@ -20,24 +21,13 @@ using test::spectral_radius;
 // A 12 x 8 block with a 6 x 5 notch cut out of its top right: the toe (6, 3) is re-entrant; the
 // crest (6, 8) is a free convex corner; rollers on the sides, fixed base.
 std::string cut_case(double courant, double damping = 0.0) {
-  return fmt::format(R"(
-name: cut
-dimension: 2
-plane: strain
-geometry:
-  spacing: 1.0
-  shapes: [{{polygon: [[0, 0], [12, 0], [12, 3], [6, 3], [6, 8], [0, 8]], material: soil}}]
-materials:
-  soil: {{model: linear_elastic, density: 2000.0, young_modulus: 1.0e7, poisson_ratio: 0.3}}
-boundary_conditions:
-  - {{group: xmin, roller: x}}
-  - {{group: xmax, roller: x}}
-  - {{group: ymin, fixed: true}}
-loads: {{damping: {{coefficient: {}}}}}
-numerics: {{courant: {}, hourglass: {{enabled: false}}}}
-time: {{end: 1.0}}
-)",
-                     damping, courant);
+  test::ElasticBlock block;
+  block.shapes = "[{polygon: [[0, 0], [12, 0], [12, 3], [6, 3], [6, 8], [0, 8]], material: soil}]";
+  block.conditions = {"{group: xmin, roller: x}", "{group: xmax, roller: x}",
+                      "{group: ymin, fixed: true}"};
+  block.loads = fmt::format("{{damping: {{coefficient: {}}}}}", damping);
+  block.numerics = fmt::format("{{courant: {}, hourglass: {{enabled: false}}}}", courant);
+  return block.text();
 }
 
 TEST(ReentrantCornerSlow, CutLatticeIsNeutrallyStable) {

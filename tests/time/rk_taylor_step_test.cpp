@@ -14,6 +14,7 @@
 #include <string>
 #include <tuple>
 
+#include "../support/elastic_block.hpp"
 #include "../support/step_matrix.hpp"
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
@@ -134,29 +135,18 @@ TEST(RkTaylorStep, PlaneWaveKeepsUniaxialStrainAndNoTransverseMotion) {
 }
 
 // Free top, fixed left, roller (mirror) bottom, free right: every boundary type and corner mix.
-std::string stability_case(double courant, bool filter) {
-  return fmt::format(R"(
-name: stability
-dimension: 2
-plane: strain
-geometry:
-  spacing: 1.0
-  shapes: [{{rectangle: {{min: [0, 0], max: [12, 5]}}, material: soil}}]
-materials:
-  soil: {{model: linear_elastic, density: 2000.0, young_modulus: 1.0e7, poisson_ratio: 0.3}}
-boundary_conditions:
-  - {{group: xmin, fixed: true}}
-  - {{group: ymin, roller: y}}
-numerics: {{courant: {}, hourglass: {{enabled: {}}}}}
-time: {{end: 1.0}}
-)",
-                     courant, filter ? "true" : "false");
+test::ElasticBlock stability_block(double courant, bool filter) {
+  test::ElasticBlock block;
+  block.conditions = {"{group: xmin, fixed: true}", "{group: ymin, roller: y}"};
+  block.numerics = fmt::format("{{courant: {}, hourglass: {{enabled: {}}}}}", courant,
+                               filter ? "true" : "false");
+  return block;
 }
 
 TEST(RkTaylorStepSlow, SpectralRadiusOfTheFullStepWithEveryBoundaryTypeIsAtMostOne) {
   for (bool filter : {true, false})
     for (double courant : {0.3, 0.5, 0.9}) {
-      Simulation simulation(read_case_text(stability_case(courant, filter), "stability.yaml"));
+      Simulation simulation(stability_block(courant, filter).description());
       EXPECT_LE(spectral_radius(simulation), 1.0 + 1e-9)
           << "courant " << courant << " filter " << filter;
     }
@@ -166,9 +156,9 @@ TEST(RkTaylorStepSlow, DampedLatticeWithEveryBoundaryTypeCanOnlyComeToRest) {
   // With damping the only velocity in a fixed point of the step is zero (docs/theory.md §5.3):
   // before the adjoint closure, the free corners forced a checkerboard that stayed.
   for (bool filter : {true, false}) {
-    std::string text = stability_case(0.5, filter);
-    text.replace(text.find("numerics:"), 9, "loads: {damping: {coefficient: 20}}\nnumerics:");
-    Simulation simulation(read_case_text(text, "stability.yaml"));
+    test::ElasticBlock block = stability_block(0.5, filter);
+    block.loads = "{damping: {coefficient: 20}}";
+    Simulation simulation(block.description());
     const double impedance = 2000.0 * simulation.model().max_wave_speed();
     EXPECT_LT(test::velocity_in_fixed_points(simulation, impedance), 1e-8) << "filter " << filter;
   }
@@ -178,9 +168,9 @@ TEST(RkTaylorStepSlow, WiderStencilsFilterEveryFieldAndStayStable) {
   // h = 1.0 and 1.3 dx: a stress point sees beyond its cell, the velocity-only filter would leave
   // radii of 1.00003-1.001; by default the filter then acts on every field (docs/theory.md §3.3).
   for (const char* h : {"1.0", "1.3"}) {
-    std::string text = stability_case(0.5, true);
-    text.replace(text.find("courant:"), 8, std::string("h_over_dx: ") + h + ", courant:");
-    Simulation simulation(read_case_text(text, "stability.yaml"));
+    test::ElasticBlock block = stability_block(0.5, true);
+    block.numerics = fmt::format("{{h_over_dx: {}, courant: 0.5}}", h);
+    Simulation simulation(block.description());
     EXPECT_FALSE(simulation.step().operators().compact_stencils) << h;
     EXPECT_EQ(simulation.step().operators().hourglass_fields, HourglassFields::All) << h;
     EXPECT_LE(spectral_radius(simulation), 1.0 + 1e-9) << "h/dx " << h;
@@ -188,14 +178,13 @@ TEST(RkTaylorStepSlow, WiderStencilsFilterEveryFieldAndStayStable) {
 }
 
 TEST(RkTaylorStep, VelocityOnlyFilterIsTheDefaultOnCompactStencilsAndRejectedOnWideOnes) {
-  Simulation compact(read_case_text(stability_case(0.5, true), "stability.yaml"));
+  Simulation compact(stability_block(0.5, true).description());
   EXPECT_TRUE(compact.step().operators().compact_stencils);
   EXPECT_EQ(compact.step().operators().hourglass_fields, HourglassFields::Velocity);
-  std::string text = stability_case(0.5, true);
-  text.replace(text.find("courant:"), 8, "h_over_dx: 1.3, courant:");
-  text.replace(text.find("enabled: true"), 13, "enabled: true, fields: velocity");
+  test::ElasticBlock block = stability_block(0.5, true);
+  block.numerics = "{h_over_dx: 1.3, courant: 0.5, hourglass: {fields: velocity}}";
   try {
-    Simulation wide(read_case_text(text, "stability.yaml"));
+    Simulation wide(block.description());
     ADD_FAILURE() << "velocity-only filter accepted at h = 1.3 dx";
   } catch (const InputError& error) {
     EXPECT_EQ(error.key(), "numerics.hourglass.fields");
@@ -206,13 +195,12 @@ TEST(RkTaylorStep, VelocityOnlyFilterIsTheDefaultOnCompactStencilsAndRejectedOnW
 
 TEST(RkTaylorStep, ANodeInNoCellIsReportedWithItsPosition) {
   // The apex of a triangle one cell high touches no cell: nothing can move it.
-  std::string text = stability_case(0.5, true);
-  text.replace(text.find("[{rectangle: {min: [0, 0], max: [12, 5]}, material: soil}]"),
-               std::string("[{rectangle: {min: [0, 0], max: [12, 5]}, material: soil}]").size(),
-               "[{polygon: [[0, 0], [12, 0], [12, 5], [7, 5], [6, 6], [5, 5], [0, 5]], "
-               "material: soil}]");
+  test::ElasticBlock block = stability_block(0.5, true);
+  block.shapes =
+      "[{polygon: [[0, 0], [12, 0], [12, 5], [7, 5], [6, 6], [5, 5], [0, 5]], "
+      "material: soil}]";
   try {
-    Simulation simulation(read_case_text(text, "stability.yaml"));
+    Simulation simulation(block.description());
     ADD_FAILURE() << "a node in no cell was accepted";
   } catch (const RunError& error) {
     EXPECT_NE(std::string(error.what()).find("(6, 6)"), std::string::npos) << error.what();
@@ -221,38 +209,34 @@ TEST(RkTaylorStep, ANodeInNoCellIsReportedWithItsPosition) {
 
 TEST(RkTaylorStepSlow, SpectralRadiusExceedsOneBeyondTheCourantLimit) {
   // Sanity of the test above: the same tool must see the instability at C = 1.1 (limit 1.0).
-  Simulation simulation(read_case_text(stability_case(1.1, false), "stability.yaml"));
+  Simulation simulation(stability_block(1.1, false).description());
   EXPECT_GT(spectral_radius(simulation), 1.01);
 }
 
-const char* kBox = R"(
-name: box
-dimension: 2
-plane: strain
-geometry:
-  spacing: 1.0
-  shapes: [{rectangle: {min: [0, 0], max: [12, 8]}, material: soil}]
-materials:
-  soil: {model: linear_elastic, density: 2000.0, young_modulus: 1.0e7, poisson_ratio: 0.3}
-boundary_conditions:
-  - {group: xmin, roller: x}
-  - {group: xmax, roller: x}
-  - {group: ymin, roller: y}
-  - {group: ymax, roller: y}
-numerics: {courant: 0.5, hourglass: {enabled: ENABLED, kappa: 0.1, fields: FIELDS}}
-time: {end: 1.0}
-)";
-
+// Rollers (mirror planes) on every side: no incomplete node, a checkerboard stays exact.
 Simulation box(bool filter, const std::string& fields) {
-  std::string text = kBox;
-  text.replace(text.find("ENABLED"), 7, filter ? "true" : "false");
-  text.replace(text.find("FIELDS"), 6, fields);
-  return Simulation(read_case_text(text, "box.yaml"));
+  test::ElasticBlock block;
+  block.shapes = test::ElasticBlock::rectangle(12.0, 8.0);
+  block.conditions = {"{group: xmin, roller: x}", "{group: xmax, roller: x}",
+                      "{group: ymin, roller: y}", "{group: ymax, roller: y}"};
+  block.numerics =
+      fmt::format("{{courant: 0.5, hourglass: {{enabled: {}, kappa: 0.1, fields: {}}}}}",
+                  filter ? "true" : "false", fields);
+  return Simulation(block.description());
 }
 
 double checkerboard_sign(const NodeSets& nodes, std::size_t i) {
   const auto& index = nodes.node_index[i];
   return (index[0] + index[1]) % 2 ? -1.0 : 1.0;
+}
+
+// Sets field to amplitude * (-1)^(i+j) and runs `steps` steps.
+void run_from_checkerboard(Simulation& simulation, int field, double amplitude, int steps) {
+  State& state = simulation.state();
+  for (std::size_t i = 0; i < simulation.nodes().sph_nodes.size(); ++i)
+    state.fields(field, i) = checkerboard_sign(simulation.nodes(), i) * amplitude;
+  for (int s = 0; s < steps; ++s)
+    simulation.step().advance(state, simulation.time_step());
 }
 
 double checkerboard_amplitude(const Simulation& simulation, int field) {
@@ -269,13 +253,9 @@ TEST(RkTaylorStep, StressCheckerboardIsNeutralUnlessTheFilterActsOnEveryField) {
   for (const auto& [filter, fields, decays] :
        {std::tuple{false, "all", false}, {true, "velocity", false}, {true, "all", true}}) {
     Simulation simulation = box(filter, fields);
-    State& state = simulation.state();
     const int sigma_xx = simulation.model().stress_field(0, 0);
-    for (std::size_t i = 0; i < simulation.nodes().sph_nodes.size(); ++i)
-      state.fields(sigma_xx, i) = checkerboard_sign(simulation.nodes(), i) * 1000.0;
     const int steps = 20;
-    for (int s = 0; s < steps; ++s)
-      simulation.step().advance(state, simulation.time_step());
+    run_from_checkerboard(simulation, sigma_xx, 1000.0, steps);
     const double ratio = checkerboard_amplitude(simulation, sigma_xx) / 1000.0;
     EXPECT_NEAR(ratio, decays ? std::pow(0.9, steps) : 1.0, 1e-9)
         << "filter " << filter << " on " << fields;
@@ -286,17 +266,11 @@ TEST(RkTaylorStep, StressCheckerboardExertsNoForceThroughFreeFacesAndCorners) {
   // Free top and sides, fixed base: the momentum closure of the incomplete nodes is the adjoint of
   // the stress points' gradient (docs/theory.md eq. 5.2), so a stress checkerboard, which no stress
   // point sees, moves nothing even where the faces cut it. Visible, 1 kPa would give ~6 mm/s.
-  std::string text = stability_case(0.5, true);
-  text.replace(text.find("  - {group: xmin, fixed: true}\n  - {group: ymin, roller: y}\n"),
-               std::string("  - {group: xmin, fixed: true}\n  - {group: ymin, roller: y}\n").size(),
-               "  - {group: ymin, fixed: true}\n");
-  Simulation simulation(read_case_text(text, "block.yaml"));
-  State& state = simulation.state();
-  const int sigma_xx = simulation.model().stress_field(0, 0);
-  for (std::size_t i = 0; i < simulation.nodes().sph_nodes.size(); ++i)
-    state.fields(sigma_xx, i) = checkerboard_sign(simulation.nodes(), i) * 1000.0;
-  for (int s = 0; s < 20; ++s)
-    simulation.step().advance(state, simulation.time_step());
+  test::ElasticBlock block = stability_block(0.5, true);
+  block.conditions = {"{group: ymin, fixed: true}"};
+  Simulation simulation(block.description());
+  run_from_checkerboard(simulation, simulation.model().stress_field(0, 0), 1000.0, 20);
+  const State& state = simulation.state();
   double speed = 0.0;
   for (std::size_t i = 0; i < simulation.nodes().sph_nodes.size(); ++i)
     for (int a = 0; a < 2; ++a)
@@ -307,22 +281,11 @@ TEST(RkTaylorStep, StressCheckerboardExertsNoForceThroughFreeFacesAndCorners) {
 TEST(RkTaylorStep, FilterRemovesTheVelocityCheckerboardAndKeepsTheStressWhenAskedTo) {
   // The filter alone on a free block: far from the faces (beyond the reach of the two round
   // trips) a checkerboard is scaled by exactly 1 - kappa, on the fields the filter acts on only.
-  const char* free_block = R"(
-name: block
-dimension: 2
-plane: strain
-geometry:
-  spacing: 1.0
-  shapes: [{rectangle: {min: [0, 0], max: [24, 24]}, material: soil}]
-materials:
-  soil: {model: linear_elastic, density: 2000.0, young_modulus: 1.0e7, poisson_ratio: 0.3}
-numerics: {hourglass: {kappa: 0.25, fields: FIELDS}}
-time: {end: 1.0}
-)";
   for (const std::string fields : {"velocity", "all"}) {
-    std::string text = free_block;
-    text.replace(text.find("FIELDS"), 6, fields);
-    Simulation simulation(read_case_text(text, "block.yaml"));
+    test::ElasticBlock block;
+    block.shapes = test::ElasticBlock::rectangle(24.0, 24.0);
+    block.numerics = "{hourglass: {kappa: 0.25, fields: " + fields + "}}";
+    Simulation simulation(block.description());
     const NodeSets& nodes = simulation.nodes();
     FieldArray& values = simulation.state().fields;
     const int v_x = simulation.model().velocity_field(0);

@@ -1,7 +1,6 @@
 #include "rktsph/sph/adjoint_operator.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <stdexcept>
 #include <string>
 
@@ -24,12 +23,12 @@ AdjointOperator build_adjoint_operator(const WeightTable& forward,
   for (std::size_t r = 0; r < target.size(); ++r)
     row_of[static_cast<std::size_t>(target[r])] = static_cast<std::int32_t>(r);
 
-  // Entries of each target, in forward-row order.
+  // Entries of each target, in forward-row order, weighted by the volume of their row.
   struct Entry {
     std::int32_t point;
     std::uint8_t reflection;
     double gradient[3];
-    double lumped_weight;
+    double interpolation;
   };
   std::vector<std::vector<Entry>> entries(target.size());
   AdjointOperator adjoint;
@@ -40,11 +39,11 @@ AdjointOperator build_adjoint_operator(const WeightTable& forward,
       const std::int32_t r = row_of[static_cast<std::size_t>(forward.source[k])];
       if (r < 0) continue;
       const auto row = static_cast<std::size_t>(r);
-      adjoint.lumped_volume[row] += row_volume[p] * forward.interpolation[k];
       Entry e{static_cast<std::int32_t>(p),
               forward.has_reflections ? forward.reflection[k] : std::uint8_t{0},
               {0.0, 0.0, 0.0},
               row_volume[p] * forward.interpolation[k]};
+      adjoint.lumped_volume[row] += e.interpolation;
       for (int c = 0; c < d; ++c)
         e.gradient[c] = -row_volume[p] * forward.gradient[static_cast<std::size_t>(c)][k];
       entries[row].push_back(e);
@@ -62,7 +61,7 @@ AdjointOperator build_adjoint_operator(const WeightTable& forward,
       table.source.push_back(e.point);
       table.reflection.push_back(e.reflection);
       table.has_reflections = table.has_reflections || e.reflection != 0;
-      table.interpolation.push_back(e.lumped_weight / volume);
+      table.interpolation.push_back(e.interpolation / volume);
       for (int c = 0; c < d; ++c)
         table.gradient[static_cast<std::size_t>(c)].push_back(e.gradient[c] / volume);
     }
@@ -73,16 +72,15 @@ AdjointOperator build_adjoint_operator(const WeightTable& forward,
   return adjoint;
 }
 
-void apply_adjoint_interpolation(const AdjointOperator& adjoint, const FieldArray& in,
-                                 std::span<const Parity> parity,
-                                 std::span<const std::uint8_t> selected, FieldArray& out) {
+void add_adjoint_interpolation(const AdjointOperator& adjoint, const FieldArray& in,
+                               std::span<const Parity> parity,
+                               std::span<const std::uint8_t> selected, FieldArray& out) {
   const WeightTable& table = adjoint.table;
   const int field_count = in.field_count();
   if (static_cast<int>(parity.size()) != field_count ||
       static_cast<int>(selected.size()) != field_count || out.field_count() < field_count)
     throw std::invalid_argument(
-        "apply_adjoint_interpolation: field count, parity and outputs "
-        "disagree");
+        "add_adjoint_interpolation: field count, parity and outputs disagree");
   for (std::size_t r = 0; r < table.rows(); ++r) {
     const auto node = static_cast<std::size_t>(adjoint.target[r]);
     for (int f = 0; f < field_count; ++f) {
@@ -92,10 +90,10 @@ void apply_adjoint_interpolation(const AdjointOperator& adjoint, const FieldArra
       double sum = 0.0;
       for (auto k = static_cast<std::size_t>(table.row_start[r]);
            k < static_cast<std::size_t>(table.row_start[r + 1]); ++k) {
-        const double sign = (std::popcount(table.reflection[k] & odd) & 1) ? -1.0 : 1.0;
-        sum += table.interpolation[k] * sign * values[table.source[k]];
+        sum += table.interpolation[k] * reflection_sign(table.reflection[k], odd) *
+               values[table.source[k]];
       }
-      out.field(f)[node] = sum;
+      out.field(f)[node] += sum;
     }
   }
 }
@@ -123,9 +121,8 @@ void apply_adjoint_gradient(const AdjointOperator& adjoint, const FieldArray& in
         double sum = 0.0;
         for (auto k = static_cast<std::size_t>(table.row_start[r]);
              k < static_cast<std::size_t>(table.row_start[r + 1]); ++k) {
-          const double sign = (std::popcount(table.reflection[k] & odd) & 1) ? -1.0 : 1.0;
-          sum += table.gradient[static_cast<std::size_t>(c)][k] * sign *
-                 (values[table.source[k]] - own);
+          sum += table.gradient[static_cast<std::size_t>(c)][k] *
+                 reflection_sign(table.reflection[k], odd) * (values[table.source[k]] - own);
         }
         out_gradient.field(f * d + c)[node] = sum;
       }

@@ -37,19 +37,20 @@ struct AdjointOperator {
   std::vector<double> lumped_volume;      ///< V_n of each row
 };
 
-/// Transposes the gradient of `forward` (rows with volumes `row_volume`) onto the nodes `target`;
-/// `self_column[r]` is where row r's own value lives in the array the result is applied to (-1:
-/// none, traction-free). Throws std::invalid_argument if a target has no forward entry.
+/// Transposes the interpolation and gradient of `forward` (rows with volumes `row_volume`) onto
+/// the nodes `target`; `self_column[r]` is where row r's own value lives in the array the gradient
+/// is applied to (-1: none, traction-free). Throws std::invalid_argument if a target has no forward
+/// entry.
 AdjointOperator build_adjoint_operator(const WeightTable& forward,
                                        std::span<const double> row_volume,
                                        std::span<const std::int32_t> target,
                                        std::span<const std::int32_t> self_column);
 
-/// Writes the adjoint interpolation of every field f of `in` (values on the stress points) with
-/// `selected[f]` into `out` (point = target node). A reflected entry enters with parity[f].
-void apply_adjoint_interpolation(const AdjointOperator& adjoint, const FieldArray& in,
-                                 std::span<const Parity> parity,
-                                 std::span<const std::uint8_t> selected, FieldArray& out);
+/// Adds the adjoint interpolation of every field f of `in` (values on the stress points) with
+/// `selected[f]` to `out` (point = target node). A reflected entry enters with parity[f].
+void add_adjoint_interpolation(const AdjointOperator& adjoint, const FieldArray& in,
+                               std::span<const Parity> parity,
+                               std::span<const std::uint8_t> selected, FieldArray& out);
 
 /// Writes the adjoint gradient of every field f with `selected[f]` into `out_gradient` (field f
 /// along axis c at f * dimension + c, point = target node). A reflected entry enters with the

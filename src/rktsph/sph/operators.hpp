@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -59,6 +60,10 @@ constexpr Parity vector_parity(int i) {
 /// Parity of tensor component (i, j).
 constexpr Parity tensor_parity(int i, int j) {
   return static_cast<Parity>((1u << i) ^ (1u << j));
+}
+/// Sign of a value of parity `parity` seen through the mirror reflections `reflection`.
+constexpr double reflection_sign(std::uint8_t reflection, unsigned parity) {
+  return (std::popcount(static_cast<unsigned>(reflection) & parity) & 1) ? -1.0 : 1.0;
 }
 
 /// How the gradient at a point is referenced (docs/theory.md §4.2).

@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 
 #include "rktsph/core/error.hpp"
@@ -97,23 +96,20 @@ StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& opt
   std::vector<std::vector<StencilSource>> stencils(n);
   ops.node_to_boundary_row.assign(n, -1);
   std::vector<std::int32_t> incomplete;  // nodes whose cells are not all present
-  std::vector<int> occupied_of(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     gather_stencil(nodes.sph_nodes.point(i), point_cells, operator_options, -1, stencils[i]);
     const int occupied = occupied_cells(stencils[i], nodes.sph_nodes.point(i), d, dx);
-    occupied_of[i] = occupied;
+    if (occupied == 0)
+      throw RunError(fmt::format(
+          "the SPH node at {} belongs to no lattice cell (a shape vertex or a one-node-wide strip "
+          "that touches no cell), so nothing moves it; widen the shape to whole cells",
+          describe_point(nodes.sph_nodes, i)));
     if (is_incomplete(occupied, d)) incomplete.push_back(static_cast<std::int32_t>(i));
     if (needs_boundary_half_step(occupied, d)) {
       ops.node_to_boundary_row[i] = static_cast<std::int32_t>(ops.boundary_nodes.size());
       ops.boundary_nodes.push_back(static_cast<std::int32_t>(i));
     }
   }
-  for (std::size_t i = 0; i < n; ++i)
-    if (occupied_of[i] == 0)
-      throw RunError(fmt::format(
-          "the SPH node at {} belongs to no lattice cell (a shape vertex or a one-node-wide strip "
-          "that touches no cell), so nothing moves it; widen the shape to whole cells",
-          describe_point(nodes.sph_nodes, i)));
   // Their closure: the lumped adjoint of the stress points' operator, with the node's own
   // half-step value (which carries the face tractions) where it has one (docs/theory.md §5.3).
   std::vector<std::int32_t> own_column(incomplete.size(), -1);
@@ -222,9 +218,8 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
       projected_rows_.push_back(operators_.node_to_boundary_row[static_cast<std::size_t>(node)]);
   }
   internal_parity_.assign(static_cast<std::size_t>(nk), kEven);
-  momentum_flux_.assign(static_cast<std::size_t>(nf), 0);
   for (int f = 0; f < nf; ++f)
-    momentum_flux_[static_cast<std::size_t>(f)] = model.feeds_momentum_only(f) ? 1 : 0;
+    momentum_flux_.push_back(model.feeds_momentum_only(f) ? 1 : 0);
   velocity_gradient_fields_.assign(static_cast<std::size_t>(nf * d), 0);
   for (int a = 0; a < d; ++a)
     for (int c = 0; c < d; ++c)
@@ -234,8 +229,7 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
       gradient_parities_.push_back(
           static_cast<Parity>(model.parities()[static_cast<std::size_t>(f)] ^ (1u << c)));
   for (int f = 0; f < nf; ++f) {
-    const bool velocity = momentum_flux_[static_cast<std::size_t>(f)] == 0;
-    if (operators_.hourglass_fields == HourglassFields::All || velocity) {
+    if (operators_.hourglass_fields == HourglassFields::All || !model.feeds_momentum_only(f)) {
       filtered_fields_.push_back(f);
       filtered_parities_.push_back(model.parities()[static_cast<std::size_t>(f)]);
     }
@@ -245,7 +239,6 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
   point_rate_ = FieldArray(nf, nv);
   point_internal_ = FieldArray(nk, nv);
   point_velocity_ = FieldArray(d, nv);
-  closure_increment_ = FieldArray(nf * d, operators_.incomplete_closure.target.size());
   boundary_values_ = FieldArray(nf, nb);
   boundary_start_ = FieldArray(nf, nb);
   boundary_gradient_ = FieldArray(nf * d, nb);
@@ -365,41 +358,32 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
 void RkTaylorStep::close_incomplete_nodes(const State& state) {
   // docs/theory.md §5.3. Momentum (eq. 5.2): the adjoint gradient of every field but the velocity.
   const AdjointOperator& closure = operators_.incomplete_closure;
-  const auto parity = model_.parities();
-  apply_adjoint_gradient(closure, half_step_, parity, momentum_flux_, node_gradient_);
-  // Strain rate (eq. 5.3): of the step-2 velocity gradient G2(v^{n+1/2}), keep the part of the
-  // half-step increments, G2(v^{n+1/2}) - G2(I v^n, v^n), and take the level-n part as the
-  // lumped average of the stress points' own gradients of v^n.
+  apply_adjoint_gradient(closure, half_step_, model_.parities(), momentum_flux_, node_gradient_);
+  // Strain rate (eq. 5.3): of the step-2 velocity gradient G2(v^{n+1/2}) keep the part of the
+  // half-step increments, G2(v^{n+1/2}) - G2(I v^n, v^n), and add as the level-n part the lumped
+  // average of the stress points' own gradients of v^n.
   const WeightTable& step2 = operators_.points_to_nodes;
   const int d = model_.dimension();
   const std::size_t nv = nodes_.stress_points.size();
-  for (std::size_t r = 0; r < closure.target.size(); ++r) {
-    const auto node = static_cast<std::size_t>(closure.target[r]);
+  for (std::int32_t target : closure.target) {
+    const auto node = static_cast<std::size_t>(target);
     for (int a = 0; a < d; ++a) {
       const int v = model_.velocity_field(a);
-      const auto odd = static_cast<unsigned>(parity[static_cast<std::size_t>(v)]);
-      for (int c = 0; c < d; ++c) {
-        double level_n = 0.0;
-        for (auto k = static_cast<std::size_t>(step2.row_start[node]);
-             k < static_cast<std::size_t>(step2.row_start[node + 1]); ++k) {
-          const auto source = static_cast<std::size_t>(step2.source[k]);
-          const double value =
-              source < nv ? point_velocity_(a, source) : state.fields(v, source - nv);
-          const bool flip = step2.has_reflections && (std::popcount(step2.reflection[k] & odd) & 1);
-          level_n += step2.gradient[static_cast<std::size_t>(c)][k] * (flip ? -value : value);
-        }
-        closure_increment_(v * d + c, r) = node_gradient_(v * d + c, node) - level_n;
+      const auto parity = static_cast<unsigned>(model_.parities()[static_cast<std::size_t>(v)]);
+      for (auto k = static_cast<std::size_t>(step2.row_start[node]);
+           k < static_cast<std::size_t>(step2.row_start[node + 1]); ++k) {
+        const auto source = static_cast<std::size_t>(step2.source[k]);
+        const double level_n =
+            (source < nv ? point_velocity_(a, source) : state.fields(v, source - nv)) *
+            (step2.has_reflections ? reflection_sign(step2.reflection[k], parity) : 1.0);
+        for (int c = 0; c < d; ++c)
+          node_gradient_(v * d + c, node) -=
+              step2.gradient[static_cast<std::size_t>(c)][k] * level_n;
       }
     }
   }
-  apply_adjoint_interpolation(closure, point_gradient_, gradient_parities_,
-                              velocity_gradient_fields_, node_gradient_);
-  for (std::size_t r = 0; r < closure.target.size(); ++r)
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c) {
-        const int g = model_.velocity_field(a) * d + c;
-        node_gradient_(g, static_cast<std::size_t>(closure.target[r])) += closure_increment_(g, r);
-      }
+  add_adjoint_interpolation(closure, point_gradient_, gradient_parities_, velocity_gradient_fields_,
+                            node_gradient_);
 }
 
 void RkTaylorStep::project_free_faces(const FieldArray& start, FieldArray& values,

@@ -109,8 +109,7 @@ class RkTaylorStep {
   FieldArray point_gradient_;
   FieldArray point_rate_;
   FieldArray point_internal_;
-  FieldArray point_velocity_;     // I(v^n) at the stress points (axis a), before their half step
-  FieldArray closure_increment_;  // step-2 velocity gradient of the half-step increments
+  FieldArray point_velocity_;  // I(v^n) at the stress points (axis a), before their half step
   FieldArray boundary_values_;
   FieldArray boundary_start_;
   FieldArray boundary_gradient_;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 #include "rktsph/driver/run_case.hpp"
@@ -170,6 +171,31 @@ std::span<const double> internal_variable(const Simulation& simulation, const st
   if (found == names.end()) throw RunError(case_name + ": the model has no " + name);
   return {simulation.state().internal.field(static_cast<int>(found - names.begin())),
           simulation.nodes().sph_nodes.size()};
+}
+
+Series band_centre_series(const std::vector<std::pair<double, double>>& centres) {
+  Series measured{"SPH: band centre on each lattice row (eps_vp-weighted)", {}, {}, "points"};
+  for (const auto& [x, y] : centres) {
+    measured.x.push_back(x);
+    measured.y.push_back(y);
+  }
+  return measured;
+}
+
+Series line_from_vertical(std::string label, double x0, double y0, double angle_deg, double y_low,
+                          double y_high, std::string style) {
+  const double dx_dy = std::tan(angle_deg * std::numbers::pi / 180.0);
+  return Series{std::move(label),
+                {x0 + (y_low - y0) * dx_dy, x0 + (y_high - y0) * dx_dy},
+                {y_low, y_high},
+                std::move(style)};
+}
+
+Series band_ridge_series(const BandLine& line, double y_low, double y_high) {
+  // direction_deg is counter-clockwise from the vertical: the line leans left going up.
+  return line_from_vertical(
+      fmt::format("ridge fit of the check: {:.1f} degrees from the vertical", line.angle_deg),
+      line.centre_x, line.centre_y, -line.direction_deg, y_low, y_high, "line");
 }
 
 }  // namespace rktsph

@@ -10,6 +10,7 @@
 
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
+#include "rktsph/validation/band_angle.hpp"
 #include "rktsph/validation/validation_case.hpp"
 
 namespace rktsph {
@@ -57,6 +58,18 @@ double material_parameter(const CaseDescription& description, const std::string&
 std::vector<double> add_row_probes(CaseDescription& description, const std::string& prefix,
                                    double x_min, double x_max, double y0, double spacing, int rows,
                                    const std::string& field);
+
+/// The report series of a band measurement (the localisation cases): the band centre on each
+/// lattice row as points, as band_row_centres gives them.
+Series band_centre_series(const std::vector<std::pair<double, double>>& centres);
+
+/// A straight line x = x0 + (y - y0) tan(angle_deg) for y in [y_low, y_high]: angle_deg from the
+/// vertical, positive when the line leans to the right going up.
+Series line_from_vertical(std::string label, double x0, double y0, double angle_deg, double y_low,
+                          double y_high, std::string style);
+
+/// The ridge line `line` fitted by a band check, drawn for y in [y_low, y_high].
+Series band_ridge_series(const BandLine& line, double y_low, double y_high);
 
 /// |a/b - 1|
 double relative_error(double value, double reference);

@@ -14,7 +14,6 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 #include <optional>
 #include <span>
 #include <utility>
@@ -45,32 +44,16 @@ void report_localization(ValidationReport& report, const std::filesystem::path& 
                          const std::vector<std::pair<double, double>>& centres,
                          const std::array<double, 3>& largest_pressure, double spacing) {
   const double reference_angle = references::j2_plane_strain_band_angle_deg();
-  const BandLine& line = band.primary;
-  Series measured{"SPH: band centre on each lattice row (eps_vp-weighted)", {}, {}, "points"};
-  for (const auto& [x, y] : centres) {
-    measured.x.push_back(x);
-    measured.y.push_back(y);
-  }
-  // The fitted ridge line: direction_deg counter-clockwise from the vertical axis.
-  const double fitted_slope = -std::tan(line.direction_deg * std::numbers::pi / 180.0);
-  const double reference_slope = std::tan(reference_angle * std::numbers::pi / 180.0);
-  Series fitted{
-      fmt::format("ridge fit of the check: {:.1f} degrees from the vertical", line.angle_deg),
-      {line.centre_x + (kRidgeLow - line.centre_y) * fitted_slope,
-       line.centre_x + (kRidgeHigh - line.centre_y) * fitted_slope},
-      {kRidgeLow, kRidgeHigh},
-      "line"};
-  Series reference{
-      fmt::format("{:g} degrees from the vertical through the weak zone centre", reference_angle),
-      {kWeakZoneCentre + (kRidgeLow - kWeakZoneCentre) * reference_slope,
-       kWeakZoneCentre + (kRidgeHigh - kWeakZoneCentre) * reference_slope},
-      {kRidgeLow, kRidgeHigh},
-      "dashed"};
-  report.add_figure({"band_fit",
-                     "Shear band at the end of the run: centre line against the reference",
-                     "x [m]",
-                     "y [m] (axes not to scale)",
-                     {std::move(measured), std::move(fitted), std::move(reference)}});
+  report.add_figure(
+      {"band_fit",
+       "Shear band at the end of the run: centre line against the reference",
+       "x [m]",
+       "y [m] (axes not to scale)",
+       {band_centre_series(centres), band_ridge_series(band.primary, kRidgeLow, kRidgeHigh),
+        line_from_vertical(
+            fmt::format("{:g} degrees from the vertical through the weak zone centre",
+                        reference_angle),
+            kWeakZoneCentre, kWeakZoneCentre, reference_angle, kRidgeLow, kRidgeHigh, "dashed")}});
 
   const ProbeTable probes = ProbeTable::read(run_directory / "probes.csv");
   const double end = probes.time().back();

@@ -133,37 +133,23 @@ void report_vertical_cut(ValidationReport& report, const std::filesystem::path& 
 
   const double reference_angle = references::j2_plane_strain_band_angle_deg();
   const BandLine& line = band.primary;
-  Series measured{"SPH: band centre on each lattice row (eps_vp-weighted)", {}, {}, "points"};
-  for (const auto& [x, y] : state.centres) {
-    measured.x.push_back(x);
-    measured.y.push_back(y);
-  }
-  // x(y) along the fitted ridge (direction_deg counter-clockwise from the vertical) and along the
-  // reference line down from the inner footing edge towards the face.
+  // The fitted ridge (direction_deg counter-clockwise from the vertical) is drawn inside the body
+  // only: down to where it meets the face x = kFace; the reference runs down from the inner
+  // footing edge towards the face.
   const double fitted_slope = -std::tan(line.direction_deg * std::numbers::pi / 180.0);
-  const double reference_slope = -std::tan(reference_angle * std::numbers::pi / 180.0);
   const double top = kCrestY - spacing;
-  // The fitted line is drawn inside the body only: down to where it meets the face x = kFace.
   double fitted_low = kRidgeLow;
   if (fitted_slope < 0.0)
     fitted_low = std::max(fitted_low, line.centre_y + (kFace - line.centre_x) / fitted_slope);
-  Series fitted{
-      fmt::format("ridge fit of the check: {:.1f} degrees from the vertical", line.angle_deg),
-      {line.centre_x + (fitted_low - line.centre_y) * fitted_slope,
-       line.centre_x + (top - line.centre_y) * fitted_slope},
-      {fitted_low, top},
-      "line"};
-  Series reference{
-      fmt::format("{:g} degrees from the vertical from the inner footing edge", reference_angle),
-      {kFootingLeft + (kRidgeLow - kCrestY) * reference_slope,
-       kFootingLeft + (top - kCrestY) * reference_slope},
-      {kRidgeLow, top},
-      "dashed"};
-  report.add_figure({"band_fit",
-                     "Wedge band at the end of the run: centre line against the reference",
-                     "x [m] (cut face at x = 8 m)",
-                     "y [m] (crest at y = 6 m; axes not to scale)",
-                     {std::move(measured), std::move(fitted), std::move(reference)}});
+  report.add_figure(
+      {"band_fit",
+       "Wedge band at the end of the run: centre line against the reference",
+       "x [m] (cut face at x = 8 m)",
+       "y [m] (crest at y = 6 m; axes not to scale)",
+       {band_centre_series(state.centres), band_ridge_series(line, fitted_low, top),
+        line_from_vertical(fmt::format("{:g} degrees from the vertical from the inner footing edge",
+                                       reference_angle),
+                           kFootingLeft, kCrestY, -reference_angle, kRidgeLow, top, "dashed")}});
 
   report.describe(fmt::format(
       "Thesis 6.4.6: a smooth rigid strip footing B = {:g} m flush with the crest of a vertical "
