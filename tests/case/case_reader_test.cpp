@@ -338,13 +338,24 @@ TEST(CaseReader, RangeLimitsAreOpenOrClosedAsSpecified) {
   EXPECT_EQ(read_case_text(with_numerics("h_over_dx: 3"), kFile).numerics.h_over_dx, 3.0);
   EXPECT_EQ(read_case_text(with_numerics("hourglass: {kappa: 0}"), kFile).numerics.hourglass_kappa,
             0.0);
+  const NumericsSpec controls =
+      read_case_text(with_numerics("hourglass: {stiffness: 1, strain_stiffness: 0}"), kFile)
+          .numerics;
+  EXPECT_EQ(controls.hourglass_stiffness, 1.0);
+  EXPECT_EQ(controls.strain_hourglass_stiffness, 0.0);
   // Rejected edges and beyond, each at the value's line with the range in `allowed`.
   const std::vector<std::pair<std::string, std::string>> rejected = {
-      {"courant: 0", "(0, 1.5]"},     {"courant: 1.6", "(0, 1.5]"},
-      {"h_over_dx: 0.5", "(0.5, 3]"}, {"hourglass: {kappa: 1.01}", "[0, 1]"},
-      {"rk_max_substeps: 0", "[1, "}, {"interpolation_order: 2", "[0, 1]"},
-      {"time_step: 0", "> 0"},        {"artificial_viscosity: -1", ">= 0"},
-      {"rk_substep_factor: 0", "> 0"}};
+      {"courant: 0", "(0, 1.5]"},
+      {"courant: 1.6", "(0, 1.5]"},
+      {"h_over_dx: 0.5", "(0.5, 3]"},
+      {"hourglass: {kappa: 1.01}", "[0, 1]"},
+      {"rk_max_substeps: 0", "[1, "},
+      {"interpolation_order: 2", "[0, 1]"},
+      {"time_step: 0", "> 0"},
+      {"artificial_viscosity: -1", ">= 0"},
+      {"rk_substep_factor: 0", "> 0"},
+      {"hourglass: {stiffness: 1.5}", "[0, 1]"},
+      {"hourglass: {strain_stiffness: -0.1}", "[0, 1]"}};
   for (const auto& [entry, range] : rejected) {
     const std::string text = with_numerics(entry);
     const InputError error = read_error(text);

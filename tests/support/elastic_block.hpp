@@ -14,6 +14,7 @@ struct ElasticBlock {
   std::string shapes = rectangle(12.0, 5.0);
   std::vector<std::string> conditions;  ///< e.g. "{group: xmin, fixed: true}"
   std::string loads;                    ///< e.g. "{damping: {coefficient: 20}}"; empty = none
+  std::string groups;                   ///< e.g. "{load: {box: {...}}}"; empty = none
   std::string numerics = "{}";
 
   static std::string rectangle(double width, double height) {
@@ -26,6 +27,7 @@ struct ElasticBlock {
                        std::to_string(spacing) + "\n  shapes: " + shapes +
                        "\nmaterials:\n  soil: {model: linear_elastic, density: 2000.0, "
                        "young_modulus: 1.0e7, poisson_ratio: 0.3}\n";
+    if (!groups.empty()) yaml += "groups: " + groups + "\n";
     if (!conditions.empty()) {
       yaml += "boundary_conditions:\n";
       for (const std::string& condition : conditions)

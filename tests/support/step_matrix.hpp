@@ -24,6 +24,8 @@ inline Eigen::MatrixXd step_matrix(Simulation& simulation, Eigen::Index size,
   Eigen::MatrixXd matrix(size, size);
   for (Eigen::Index column = 0; column < size; ++column) {
     std::fill(state.fields.data().begin(), state.fields.data().end(), 0.0);
+    std::fill(state.displacement.data().begin(), state.displacement.data().end(), 0.0);
+    std::fill(state.strain.data().begin(), state.strain.data().end(), 0.0);
     state.fields.data()[static_cast<std::size_t>(column)] = unit(column);
     state.time = 0.0;
     simulation.step().advance(state, simulation.time_step());
@@ -31,6 +33,59 @@ inline Eigen::MatrixXd step_matrix(Simulation& simulation, Eigen::Index size,
       matrix(row, column) = state.fields.data()[static_cast<std::size_t>(row)] / unit(row);
   }
   return matrix;
+}
+
+/// The state of the zero-energy controls' step (docs/theory.md §3.4): every field, then the
+/// displacement and the strain the nodal stress received, which their forces depend on.
+inline std::vector<double*> unknowns_with_displacement(State& state) {
+  std::vector<double*> slots;
+  for (double& x : state.fields.data())
+    slots.push_back(&x);
+  for (double& x : state.displacement.data())
+    slots.push_back(&x);
+  for (double& x : state.strain.data())
+    slots.push_back(&x);
+  return slots;
+}
+
+/// The affine one-step map x -> M x + c on fields, displacement and received strain, with
+/// stresses in units of `impedance` (rho c_p), displacements in units of dt and strains in units
+/// of dt / dx (so that all unknowns are velocities).
+struct AffineStep {
+  Eigen::MatrixXd matrix;
+  Eigen::VectorXd constant;
+  Eigen::Index velocities = 0;
+};
+
+inline AffineStep affine_step(Simulation& simulation, double impedance) {
+  State& state = simulation.state();
+  const std::vector<double*> slots = unknowns_with_displacement(state);
+  const auto size = static_cast<Eigen::Index>(slots.size());
+  const auto fields = static_cast<Eigen::Index>(state.fields.data().size());
+  const auto points = static_cast<Eigen::Index>(state.fields.point_count());
+  const double dt = simulation.time_step();
+  AffineStep step;
+  step.velocities = simulation.model().dimension() * points;
+  Eigen::VectorXd unit = Eigen::VectorXd::Constant(size, impedance);
+  unit.head(step.velocities).setOnes();
+  const auto displacements = static_cast<Eigen::Index>(state.displacement.data().size());
+  unit.segment(fields, displacements).setConstant(dt);
+  unit.tail(size - fields - displacements).setConstant(dt / simulation.nodes().spacing);
+  auto advance = [&](const Eigen::VectorXd& x) {
+    for (Eigen::Index k = 0; k < size; ++k)
+      *slots[static_cast<std::size_t>(k)] = x(k) * unit(k);
+    state.time = 0.0;
+    simulation.step().advance(state, dt);
+    Eigen::VectorXd y(size);
+    for (Eigen::Index k = 0; k < size; ++k)
+      y(k) = *slots[static_cast<std::size_t>(k)] / unit(k);
+    return y;
+  };
+  step.constant = advance(Eigen::VectorXd::Zero(size));
+  step.matrix.resize(size, size);
+  for (Eigen::Index j = 0; j < size; ++j)
+    step.matrix.col(j) = advance(Eigen::VectorXd::Unit(size, j)) - step.constant;
+  return step;
 }
 
 inline double spectral_radius(Simulation& simulation) {

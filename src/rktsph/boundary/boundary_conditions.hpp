@@ -7,6 +7,7 @@
 #include <map>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rktsph/case/case_description.hpp"
@@ -52,6 +53,15 @@ class BoundaryConditions {
   const std::vector<std::int32_t>& drained_nodes() const { return drained_nodes_; }
   double drained_pressure(std::size_t k, double time) const {
     return functions_[static_cast<std::size_t>(drained_function_[k])](time);
+  }
+
+  /// Every (node, stress field) that a constraint overwrites (tractions, traction-free faces,
+  /// roller shear), in no particular order.
+  std::vector<std::pair<std::int32_t, int>> constrained_stress() const {
+    std::vector<std::pair<std::int32_t, int>> pairs;
+    for (const Constraint& c : stress_constraints_)
+      pairs.emplace_back(c.node, c.field);
+    return pairs;
   }
 
   /// True if velocity component `axis` of `node` is imposed.

@@ -142,7 +142,12 @@ struct NumericsSpec {
   double hourglass_kappa = 0.1;
   double hourglass_h_over_dx = 1.3;
   std::optional<HourglassFields> hourglass_fields;  ///< unset: from the stencil width
-  double artificial_viscosity = 0.0;                ///< alpha of R7, 0 = off
+  /// epsilon of the cells' hourglass stiffness (docs/theory.md eq. 3.3); 0 = off, the default
+  /// while the controls turn prestress relaxation into a slow creep (theory §3.4)
+  double hourglass_stiffness = 0.0;
+  /// epsilon_s of the strain hourglass stiffness (theory eq. 3.5), at most (1 - C^2)/C^2; 0 = off
+  double strain_hourglass_stiffness = 0.0;
+  double artificial_viscosity = 0.0;  ///< alpha of R7, 0 = off
   SourceLocation where;
 };
 

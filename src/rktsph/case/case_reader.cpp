@@ -437,7 +437,8 @@ void CaseReader::read_numerics(const YamlNode& node) {
   }
   if (const YamlNode* hourglass_node = map.find("hourglass")) {
     const YamlMap hourglass(*hourglass_node);
-    hourglass.allow_only({"enabled", "kappa", "h_over_dx", "fields"});
+    hourglass.allow_only(
+        {"enabled", "kappa", "h_over_dx", "fields", "stiffness", "strain_stiffness"});
     if (const YamlNode* enabled = hourglass.find("enabled")) {
       numerics.hourglass_filter = to_bool(*enabled);
     }
@@ -451,6 +452,12 @@ void CaseReader::read_numerics(const YamlNode& node) {
       numerics.hourglass_fields = to_choice(*fields, {"velocity", "all"}) == "all"
                                       ? HourglassFields::All
                                       : HourglassFields::Velocity;
+    }
+    if (const YamlNode* stiffness = hourglass.find("stiffness")) {
+      numerics.hourglass_stiffness = to_number(*stiffness, kUnitInterval);
+    }
+    if (const YamlNode* stiffness = hourglass.find("strain_stiffness")) {
+      numerics.strain_hourglass_stiffness = to_number(*stiffness, kUnitInterval);
     }
   }
   if (const YamlNode* viscosity = map.find("artificial_viscosity")) {
@@ -944,6 +951,9 @@ void emit_numerics(YAML::Emitter& out, const NumericsSpec& numerics) {
   out << YAML::Key << "enabled" << YAML::Value << (numerics.hourglass_filter ? "true" : "false");
   out << YAML::Key << "kappa" << YAML::Value << number(numerics.hourglass_kappa);
   out << YAML::Key << "h_over_dx" << YAML::Value << number(numerics.hourglass_h_over_dx);
+  out << YAML::Key << "stiffness" << YAML::Value << number(numerics.hourglass_stiffness);
+  out << YAML::Key << "strain_stiffness" << YAML::Value
+      << number(numerics.strain_hourglass_stiffness);
   if (numerics.hourglass_fields) {
     out << YAML::Key << "fields" << YAML::Value
         << (*numerics.hourglass_fields == HourglassFields::All ? "all" : "velocity");

@@ -43,6 +43,8 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
                                                   options.progress_is_terminal, options.quiet);
     simulation.add_observer(*progress);
   }
+  for (Observer* observer : options.observers)
+    simulation.add_observer(*observer);
 
   RunOutcome outcome;
   outcome.status = simulation.run();

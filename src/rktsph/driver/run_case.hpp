@@ -6,6 +6,7 @@
 #include <functional>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "rktsph/case/case_description.hpp"
 #include "rktsph/simulation/simulation.hpp"
@@ -16,6 +17,9 @@ struct RunOptions {
   bool quiet = false;
   bool progress_is_terminal = false;
   std::ostream* progress_stream = nullptr;  // null: no progress display
+  /// Further observers of the loop (validation metrics sampled while the run goes), added after
+  /// the standard ones; they must outlive the call.
+  std::vector<Observer*> observers;
 };
 
 struct RunOutcome {

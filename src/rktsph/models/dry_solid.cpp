@@ -92,6 +92,14 @@ double DrySolid::max_wave_speed() const {
   return speed;
 }
 
+std::array<double, 3> DrySolid::in_plane_moduli(std::int32_t material) const {
+  const ElasticConstants& e = materials_[static_cast<std::size_t>(material)]->elastic();
+  if (kinematics_ == Kinematics::PlaneStress)
+    return {e.plane_stress_modulus(), e.poisson_ratio * e.plane_stress_modulus(),
+            e.shear_modulus()};
+  return {e.constrained_modulus(), e.lame_lambda(), e.shear_modulus()};
+}
+
 double DrySolid::divergence_bound(int field) const {
   // |v| = 10 c_p or |sigma| = 10 M means a strain of about 10 (docs/theory.md §2.5).
   if (field < dimension()) return 10.0 * max_wave_speed();

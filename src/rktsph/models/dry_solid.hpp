@@ -54,6 +54,10 @@ class DrySolid : public PhysicsModel {
   int velocity_field(int axis) const override { return axis < dimension() ? axis : -1; }
   int stress_field(int i, int j) const override;
   double max_wave_speed() const override;
+  double density(std::int32_t material) const override {
+    return materials_[static_cast<std::size_t>(material)]->density();
+  }
+  std::array<double, 3> in_plane_moduli(std::int32_t material) const override;
   double divergence_bound(int field) const override;
 
   void flux_rate(std::span<const std::int32_t> material, const FieldArray& gradient,

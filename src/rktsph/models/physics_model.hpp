@@ -6,6 +6,7 @@
 // terms and moving nodes) and V3 (saturated, plus a pressure projection) differ only here.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -53,6 +54,14 @@ class PhysicsModel {
 
   /// Largest wave speed of the model [m/s] (the drained P-wave speed), for the Courant rule.
   virtual double max_wave_speed() const = 0;
+
+  /// Mass density of material m [kg/m3] (the mixture density in the saturated model).
+  virtual double density(std::int32_t material) const = 0;
+  /// In-plane elastic moduli of material m [Pa] (drained): {M', lambda', G} with
+  /// sigma_aa = M' eps_aa + lambda' eps_bb (a != b in the plane) and sigma_ab = 2G eps_ab;
+  /// M' = lambda + 2G, lambda' = lambda in plane strain, M' = E/(1 - nu^2), lambda' = nu M' in
+  /// plane stress. The scale of the zero-energy controls (docs/theory.md §3.4).
+  virtual std::array<double, 3> in_plane_moduli(std::int32_t material) const = 0;
 
   /// Magnitude beyond which field f can only come from a diverging run (a strain of order 10);
   /// the loop stops there, while the output is still finite.

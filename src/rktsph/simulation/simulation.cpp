@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -45,6 +46,23 @@ Loads loads_of(const CaseDescription& description) {
   return loads;
 }
 
+// epsilon_s of docs/theory.md eq. 3.5, checked against its stability limit (1 - C^2)/C^2 at the
+// run's Courant number C (eq. 3.7; test
+// ZeroEnergyControlsSlow.StrainStiffnessIsStableBelowItsLimitAndRejectedAbove).
+double strain_hourglass_stiffness(const NumericsSpec& numerics, double courant) {
+  const double limit = std::max((1.0 - courant * courant) / (courant * courant), 0.0);
+  const double epsilon = numerics.strain_hourglass_stiffness;
+  if (epsilon > limit)
+    throw InputError(
+        numerics.where, "numerics.hourglass.strain_stiffness", fmt::format("{}", epsilon),
+        fmt::format("at Courant number {:.3g} the strain hourglass stiffness makes the "
+                    "step unstable above (1 - C^2)/C^2 = {:.3g} (docs/theory.md eq. "
+                    "3.7)",
+                    courant, limit),
+        fmt::format("a number in [0, {:.3g}], or a smaller courant", limit));
+  return epsilon;
+}
+
 }  // namespace
 
 Simulation::Simulation(CaseDescription description) : description_(std::move(description)) {
@@ -82,6 +100,12 @@ Simulation::Simulation(CaseDescription description) : description_(std::move(des
   options.hourglass_kappa = numerics.hourglass_kappa;
   options.hourglass_h_over_dx = numerics.hourglass_h_over_dx;
   options.hourglass_fields = numerics.hourglass_fields;
+  options.hourglass_stiffness = numerics.hourglass_stiffness;
+  // dt = C dx / c_p (docs/theory.md §2.5), constant: the operators are fixed.
+  time_step_ = numerics.time_step ? *numerics.time_step
+                                  : numerics.courant * nodes_.spacing / model_->max_wave_speed();
+  options.strain_hourglass_stiffness =
+      strain_hourglass_stiffness(numerics, time_step_ * model_->max_wave_speed() / nodes_.spacing);
   options.artificial_viscosity = numerics.artificial_viscosity;
   StepOperators operators = build_step_operators(nodes_, options, conditions_->mirror_planes());
   if (numerics.hourglass_fields == HourglassFields::Velocity && !operators.compact_stencils &&
@@ -94,9 +118,6 @@ Simulation::Simulation(CaseDescription description) : description_(std::move(des
                      "all, or h_over_dx below 0.79 (cubic spline; 0.52 for the quintic spline "
                      "and the Gaussian)");
   step_ = std::make_unique<RkTaylorStep>(*model_, nodes_, std::move(operators), *conditions_);
-  // dt = C dx / c_p (docs/theory.md §2.5), constant: the operators are fixed.
-  time_step_ = numerics.time_step ? *numerics.time_step
-                                  : numerics.courant * nodes_.spacing / model_->max_wave_speed();
   total_steps_ = static_cast<long>(std::ceil(description_.time.end / time_step_ - 1e-9));
   if (total_steps_ > description_.time.max_steps)
     throw InputError(description_.time.where, "time.max_steps",
@@ -120,6 +141,7 @@ void Simulation::initialise_state() {
   state_.fields = FieldArray(model_->field_count(), n);
   state_.internal = FieldArray(model_->internal_count(), n);
   state_.displacement = FieldArray(d, n);
+  if (step_->strain_hourglass_stiffness().active()) state_.strain = FieldArray(3, n);
   for (std::size_t i = 0; i < n; ++i) {
     for (int a = 0; a < d; ++a)
       state_.fields(model_->velocity_field(a), i) = description_.initial.velocity[a];
@@ -144,6 +166,7 @@ void Simulation::initialise_state() {
     }
   }
   conditions_->apply(0.0, state_.fields);
+  step_->set_initial_state(state_);
 }
 
 std::string Simulation::find_divergence(const State& state) const {

@@ -12,6 +12,10 @@ struct State {
   FieldArray fields;        ///< the model's unknowns (velocity, stress, ...) on SPH nodes
   FieldArray internal;      ///< internal variables on SPH nodes
   FieldArray displacement;  ///< u, integrated from the velocity (trapezoidal), one field per axis
+  /// e: the time integral of the symmetric nodal velocity gradient the nodal stress was updated
+  /// with (xx, yy, xy), kept only when the strain hourglass stiffness is on (docs/theory.md eq.
+  /// 3.5); empty otherwise.
+  FieldArray strain;
 };
 
 }  // namespace rktsph

@@ -183,6 +183,13 @@ StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& opt
   // 1.00003-1.001 at h = 1.0-1.3 dx); the filter on every field keeps it below 1 (§3.3).
   ops.hourglass_fields = options.hourglass_fields.value_or(
       ops.compact_stencils ? HourglassFields::Velocity : HourglassFields::All);
+  ops.hourglass_stiffness = options.hourglass_stiffness;
+  ops.strain_hourglass_stiffness = options.strain_hourglass_stiffness;
+  ops.mirror_axes.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    for (const MirrorPlane& plane : mirrors)
+      if (std::abs(nodes.sph_nodes.position[plane.axis][i] - plane.coordinate) <= 1e-6 * dx)
+        ops.mirror_axes[i] |= static_cast<std::uint8_t>(1u << plane.axis);
   ops.viscosity_length = options.artificial_viscosity * dx;
   if (ops.hourglass_filter) {
     OperatorOptions filter_options = operator_options;
@@ -246,6 +253,11 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
   boundary_internal_ = FieldArray(nk, nb);
   node_gradient_ = FieldArray(nf * d, ns);
   node_rate_ = FieldArray(nf, ns);
+  hourglass_stiffness_ = build_hourglass_stiffness(nodes, model, operators_.hourglass_stiffness);
+  if (hourglass_stiffness_.active()) hourglass_force_ = FieldArray(2, nv);
+  strain_hourglass_stiffness_ = StrainHourglassStiffness(
+      model, operators_.nodes_to_points, nodes.stress_points.volume, operators_.mirror_axes,
+      conditions.constrained_stress(), nodes.node_material, operators_.strain_hourglass_stiffness);
   if (operators_.hourglass_filter) {
     const auto values = filtered_fields_.size();
     filter_values_.assign(values * ns, 0.0);
@@ -324,10 +336,25 @@ void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
 }
 
 void RkTaylorStep::step_nodes(State& state, double dt) {
+  const int d = model_.dimension();
+  const std::size_t ns = nodes_.sph_nodes.size();
+  // Displacement by the trapezoidal rule: half with v^n now, the v^{n+1} half in advance(). The
+  // zero-energy controls act on this u^{n+1/2} (docs/theory.md §3.4).
+  for (int a = 0; a < d; ++a) {
+    const double* v = state.fields.field(model_.velocity_field(a));
+    double* u = state.displacement.field(a);
+    for (std::size_t i = 0; i < ns; ++i)
+      u[i] += 0.5 * dt * v[i];
+  }
+  if (strain_hourglass_stiffness_.active())
+    strain_hourglass_stiffness_.add_stress(
+        model_, operators_.nodes_to_points, nodes_.stress_point_material, state.displacement,
+        state.strain, point_gradient_, dt, state.fields, half_step_);
   // Step 2: gradient of the half-step values at the SPH nodes, full step from Phi^n.
   apply_operator(operators_.points_to_nodes, half_step_, model_.parities(), nullptr,
                  &node_gradient_);
   close_incomplete_nodes(state);
+  strain_hourglass_stiffness_.integrate_strain(model_, node_gradient_, dt, state.strain);
   model_.flux_rate(nodes_.node_material, node_gradient_, node_rate_);
   const auto& boundary = operators_.boundary_nodes;
   const int nf = model_.field_count();
@@ -335,15 +362,11 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
     for (int f = 0; f < nf; ++f)
       boundary_start_(f, r) = state.fields(f, static_cast<std::size_t>(boundary[r]));
 
-  const int d = model_.dimension();
-  const std::size_t ns = nodes_.sph_nodes.size();
-  // Displacement by the trapezoidal rule: half with v^n now, the v^{n+1} half in advance().
-  for (int a = 0; a < d; ++a) {
-    const double* v = state.fields.field(model_.velocity_field(a));
-    double* u = state.displacement.field(a);
-    for (std::size_t i = 0; i < ns; ++i)
-      u[i] += 0.5 * dt * v[i];
-  }
+  // The cells' hourglass stiffness acts on u^{n+1/2} = u^n + dt v^n / 2 (docs/theory.md §3.4).
+  if (hourglass_stiffness_.active())
+    add_hourglass_acceleration(hourglass_stiffness_, state.displacement,
+                               {model_.velocity_field(0), model_.velocity_field(1)},
+                               hourglass_force_, node_rate_);
   model_.advance(nodes_.node_material, node_rate_, state.time, dt, state.fields, state.internal);
   project_free_faces(boundary_start_, state.fields, false);
   conditions_.apply(state.time + dt, state.fields);

@@ -19,6 +19,8 @@
 #include "rktsph/simulation/state.hpp"
 #include "rktsph/sph/adjoint_operator.hpp"
 #include "rktsph/sph/operators.hpp"
+#include "rktsph/stabilisation/hourglass_stiffness.hpp"
+#include "rktsph/stabilisation/strain_hourglass_stiffness.hpp"
 
 namespace rktsph {
 
@@ -30,6 +32,8 @@ struct StepOptions {
   double hourglass_kappa = 0.1;
   double hourglass_h_over_dx = 1.3;
   std::optional<HourglassFields> hourglass_fields;  // unset: Velocity on compact stencils, else All
+  double hourglass_stiffness = 0.0;                 // epsilon of docs/theory.md eq. 3.3; 0 = off
+  double strain_hourglass_stiffness = 0.0;          // epsilon_s of docs/theory.md eq. 3.5; 0 = off
   double artificial_viscosity = 0.0;                // alpha of prototype R7; 0 = off
 };
 
@@ -46,6 +50,10 @@ struct StepOperators {
   bool hourglass_filter = false;
   double hourglass_kappa = 0.0;
   HourglassFields hourglass_fields = HourglassFields::Velocity;
+  double hourglass_stiffness = 0.0;         ///< epsilon of the cells' hourglass stiffness (eq. 3.3)
+  double strain_hourglass_stiffness = 0.0;  ///< epsilon_s of eq. 3.5
+  /// Bit a: the node lies on a mirror plane normal to axis a.
+  std::vector<std::uint8_t> mirror_axes;
   /// Every stress point's stencil is its own cell's corners (h small enough): the lattice
   /// operators then commute in the interior (docs/theory.md §5.3).
   bool compact_stencils = false;
@@ -79,6 +87,15 @@ class RkTaylorStep {
   void advance(State& state, double dt);
 
   const StepOperators& operators() const { return operators_; }
+  const HourglassStiffness& hourglass_stiffness() const { return hourglass_stiffness_; }
+  const StrainHourglassStiffness& strain_hourglass_stiffness() const {
+    return strain_hourglass_stiffness_;
+  }
+  /// Records the imposed stresses of the initial state (after its conditions), the reference of
+  /// the strain hourglass stiffness at constrained nodes (docs/theory.md eq. 3.8).
+  void set_initial_state(const State& state) {
+    strain_hourglass_stiffness_.set_reference(state.fields);
+  }
   void set_projection(StepProjection* projection) { projection_ = projection; }
   /// Applies the hourglass filter of step 3 alone (docs/theory.md eq. 3.1); no-op when it is off.
   void filter_hourglass(FieldArray& fields);
@@ -95,6 +112,8 @@ class RkTaylorStep {
   StepOperators operators_;
   const BoundaryConditions& conditions_;
   StepProjection* projection_ = nullptr;
+  HourglassStiffness hourglass_stiffness_;  // docs/theory.md §3.4
+  StrainHourglassStiffness strain_hourglass_stiffness_;
   std::vector<std::int32_t> boundary_material_;
   std::vector<std::int32_t> projected_rows_;
   std::vector<Parity> internal_parity_;      // boundary rows whose stress increments are projected
@@ -117,6 +136,7 @@ class RkTaylorStep {
   FieldArray boundary_internal_;
   FieldArray node_gradient_;
   FieldArray node_rate_;
+  FieldArray hourglass_force_;         // k q of every cell (docs/theory.md eq. 3.4)
   std::vector<double> filter_values_;  // node-major copies for the filter's round trip
   std::vector<double> filter_points_;
   std::vector<double> filter_round_trip_;

@@ -30,6 +30,10 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_vpw_localization},
       {"vpw-vertical-cut-footing", "footing on a saturated vertical cut, undrained limit (6.4.6)",
        &validate_vpw_vertical_cut_footing},
+      {"strip-footing-elastic", "flexible strip load on a dry elastic stratum against Flamant",
+       &validate_strip_footing_elastic},
+      {"hanging-beam", "slender elastic beam hanging under ramped gravity, damped (V2-0)",
+       &validate_hanging_beam},
   };
   return cases;
 }

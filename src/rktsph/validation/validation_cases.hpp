@@ -21,5 +21,7 @@ std::vector<CheckResult> validate_vpw_harmonic_column(const ValidationContext& c
 std::vector<CheckResult> validate_vpw_strip_footing_elastic(const ValidationContext& context);
 std::vector<CheckResult> validate_vpw_localization(const ValidationContext& context);
 std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationContext& context);
+std::vector<CheckResult> validate_strip_footing_elastic(const ValidationContext& context);
+std::vector<CheckResult> validate_hanging_beam(const ValidationContext& context);
 
 }  // namespace rktsph

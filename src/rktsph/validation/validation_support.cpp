@@ -115,10 +115,12 @@ CaseDescription load_bundled_case(const ValidationContext& context, const std::s
 std::filesystem::path run_for_validation(const ValidationContext& context,
                                          const CaseDescription& description,
                                          const std::string& label,
-                                         const std::function<void(const Simulation&)>& inspect) {
+                                         const std::function<void(const Simulation&)>& inspect,
+                                         const std::vector<Observer*>& observers) {
   const std::filesystem::path directory = context.output_directory / description.name / label;
   RunOptions options;
   options.quiet = true;
+  options.observers = observers;
   const RunOutcome outcome = run_case(description, directory, options, inspect);
   if (outcome.status != RunStatus::Completed)
     throw RunError(fmt::format("run '{}' of {} did not complete: {}", label, description.name,

@@ -11,6 +11,7 @@
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 #include "rktsph/validation/band_angle.hpp"
+#include "rktsph/validation/rest_checks.hpp"
 #include "rktsph/validation/validation_case.hpp"
 
 namespace rktsph {
@@ -44,9 +45,13 @@ CaseDescription load_bundled_case(const ValidationContext& context, const std::s
                                   const std::vector<CaseOverride>& overrides = {});
 
 /// Runs `description` into <output>/<case>/<label>; throws RunError if it does not complete.
-std::filesystem::path run_for_validation(
-    const ValidationContext& context, const CaseDescription& description, const std::string& label,
-    const std::function<void(const Simulation&)>& inspect = {});
+/// `inspect` sees the finished simulation; `observers` (e.g. a SampledObserver or a
+/// SpeedRecorder's) watch the loop while it runs.
+std::filesystem::path run_for_validation(const ValidationContext& context,
+                                         const CaseDescription& description,
+                                         const std::string& label,
+                                         const std::function<void(const Simulation&)>& inspect = {},
+                                         const std::vector<Observer*>& observers = {});
 
 /// A numeric parameter of a material block of the case; RunError if it is absent.
 double material_parameter(const CaseDescription& description, const std::string& material,

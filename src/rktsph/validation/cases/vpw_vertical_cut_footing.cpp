@@ -4,13 +4,23 @@
 // Checks:
 //   limit_pressure_error  |q/(2c) - 1| with q the footing pressure on the plateau: the mean total
 //                         vertical stress under the footing (trapezoidal weights over its nodes,
-//                         from probes.csv) over the last fifth of the run, and c = Y/sqrt(3)
+//                         from probes.csv) over the last fifth of the push (4 s <= t <= 5 s), and
+//                         c = Y/sqrt(3)
 //                         (validation.md §5.3.6: the uniaxial column under the footing and the 45°
 //                         wedge from its inner edge to the face both give 2c, drained or
 //                         undrained). The Perzyna overstress is kept below 1 %: V/(gamma B) = 0.004
 //                         (§0).
-//   shear_band_angle      the band of eps_vp at the end (validation/band_angle.hpp), measured from
-//                         the vertical: 45° ± 5° (§5.3.6).
+//   shear_band_angle      the band of eps_vp at the end of the push, t = 5 s
+//                         (validation/band_angle.hpp), measured from the vertical: 45° ± 5°
+//                         (§5.3.6).
+//   contact_pressure_oddeven_ratio  the odd-even part of the node-by-node contact pressure
+//                         -sigma_yy (total) on the interior footing nodes over its mean
+//                         (rest_checks.hpp), the largest over the states at t = 4, 4.5 and 5 s (the
+//                         field outputs of the plateau).
+//   residual_velocity_ratio  after the push the footing is stopped (from 5.05 s, 0.1 s ramp) and
+//                         held to 6.5 s with mass damping acting only then: largest |v| over all
+//                         nodes at the end over its peak during the hold, t >= 5.05 s
+//                         (rest_checks.hpp).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -45,6 +55,14 @@ constexpr double kBandRegionDepth = 2.0 * kFootingWidth;
 constexpr double kQuickSpacing = 0.25;
 // Lowest row of the report's band figure: where the 45° line from the footing edge meets the face.
 constexpr double kRidgeLow = kCrestY - kFootingWidth;
+// The plateau and the band are read up to kPushEnd, as when the run ended there; the footing stops
+// from kHoldStart on (case.yaml: the velocity table and the damping start), after the step that
+// reaches kPushEnd, so that everything up to that step is as before. The plateau is the last fifth
+// of the push, sampled at the field-output interval kPlateauSampling.
+constexpr double kPushEnd = 5.0;
+constexpr double kHoldStart = 5.05;
+constexpr double kPlateauStart = 0.8 * kPushEnd;
+constexpr double kPlateauSampling = 0.5;
 
 // Mean over the footing nodes with trapezoidal weights (the two end nodes count half), from the
 // group mean of the probe and the two end-node probes.
@@ -125,7 +143,7 @@ void report_vertical_cut(ValidationReport& report, const std::filesystem::path& 
                                                  2, [&](double) { return 1e-3 * limit; })}});
   report.add_figure(
       {"load_history",
-       "Footing pressure against time (footing pushed at a constant rate)",
+       "Footing pressure against time (pushed at a constant rate to 5 s, then held)",
        "time [s]",
        "footing pressure q [kPa]",
        {std::move(load_history),
@@ -143,7 +161,7 @@ void report_vertical_cut(ValidationReport& report, const std::filesystem::path& 
     fitted_low = std::max(fitted_low, line.centre_y + (kFace - line.centre_x) / fitted_slope);
   report.add_figure(
       {"band_fit",
-       "Wedge band at the end of the run: centre line against the reference",
+       "Wedge band at the end of the push: centre line against the reference",
        "x [m] (cut face at x = 8 m)",
        "y [m] (crest at y = 6 m; axes not to scale)",
        {band_centre_series(state.centres), band_ridge_series(line, fitted_low, top),
@@ -154,21 +172,23 @@ void report_vertical_cut(ValidationReport& report, const std::filesystem::path& 
   report.describe(fmt::format(
       "Thesis 6.4.6: a smooth rigid strip footing B = {:g} m flush with the crest of a vertical "
       "cut (half model, dx = {:g} m) in saturated, weightless Von Mises-Perzyna soil, "
-      "pushed down at a constant rate, with a low permeability (undrained over the run). "
-      "Reference: "
-      "the limit pressure 2 c_u = 2 Y/sqrt(3) = {:.1f} kPa, reached by the uniaxial column under "
+      "pushed down at a constant rate to t = {:g} s, then stopped and held with mass damping, with "
+      "a low permeability (undrained over the run). Reference: the limit pressure 2 c_u = 2 "
+      "Y/sqrt(3) = {:.1f} kPa, reached by the uniaxial column under "
       "the footing and the 45-degree wedge from its inner edge to the face. The footing "
       "pressure is the mean total vertical stress under the footing; measured plateau (mean over "
-      "t >= {:g} s, the checked value): {:.1f} kPa. Band (ridge fit of eps_vp at the end): "
-      "{:.1f} degrees from the vertical, reference {:g}.",
-      kFootingWidth, spacing, 1e-3 * limit, plateau_start, 1e-3 * plateau, line.angle_deg,
-      reference_angle));
-  report.add_picture({"eps_vp", run_directory.string(), "eps_vp", -1, -1.0, 0.0,
-                      "Equivalent viscoplastic strain at the end: the band from the inner footing "
-                      "edge (x = 6 m, top) down to the cut face (x = 8 m)."});
+      "{:g} <= t <= {:g} s, the checked value): {:.1f} kPa. Band (ridge fit of eps_vp at the end "
+      "of the push): {:.1f} degrees from the vertical, reference {:g}. During the hold the body "
+      "must come to rest.",
+      kFootingWidth, spacing, kPushEnd, 1e-3 * limit, plateau_start, kPushEnd, 1e-3 * plateau,
+      line.angle_deg, reference_angle));
+  report.add_picture({"eps_vp", run_directory.string(), "eps_vp", -1, kPushEnd, 0.0,
+                      "Equivalent viscoplastic strain at the end of the push: the band from the "
+                      "inner footing edge (x = 6 m, top) down to the cut face (x = 8 m)."});
   report.add_picture(
-      {"pore_pressure", run_directory.string(), "pore_pressure", -1, -1.0, 0.0,
-       fmt::format("Excess pore pressure at the end (drained top and face). Largest |p_w|: {:.0f} "
+      {"pore_pressure", run_directory.string(), "pore_pressure", -1, kPushEnd, 0.0,
+       fmt::format("Excess pore pressure at the end of the push (drained top and face). Largest "
+                   "|p_w|: {:.0f} "
                    "kPa at the node (x, y) = ({:g}, {:g}) m, {:.1f} times 2 c_u.",
                    1e-3 * state.largest_pressure, state.largest_x, state.largest_y,
                    std::abs(state.largest_pressure) / limit)});
@@ -177,47 +197,97 @@ void report_vertical_cut(ValidationReport& report, const std::filesystem::path& 
 }  // namespace
 
 std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationContext& context) {
-  std::vector<CaseOverride> overrides = {{"output.interval", "0"}};
+  // Field output at the end of the push (for the pictures of the band and p_w) and at the end.
+  std::vector<CaseOverride> overrides = {{"output.interval", fmt::format("{:g}", kPushEnd)}};
   if (context.quick) overrides.push_back({"geometry.spacing", std::to_string(kQuickSpacing)});
   const CaseDescription description =
       load_bundled_case(context, "vpw-vertical-cut-footing", overrides);
   const double spacing = description.geometry.spacing;
   const int footing_nodes = static_cast<int>(std::lround(kFootingWidth / spacing)) + 1;
 
+  // The state at the end of the push (band, report) and the contact pressure on the plateau,
+  // sampled while the run goes; the largest velocity at every probe output.
   std::optional<BandMeasurement> band;
   FinalState state;
-  const std::filesystem::path run_directory = run_for_validation(
-      context, description, context.quick ? "quick" : "full", [&](const Simulation& simulation) {
-        band = measure_wedge_band(simulation);
-        if (context.report) state = final_state(simulation, band->threshold);
-      });
+  NodeLine contact;  // at the end of the push, for the report
+  double contact_ratio = 0.0;
+  int contact_samples = 0;
+  SampledObserver push_states(kPlateauSampling, [&](const Simulation& simulation) {
+    const double time = simulation.state().time, dt = simulation.time_step();
+    // The sampler takes the first state at or after each multiple of kPlateauSampling.
+    if (time < kPlateauStart - 0.5 * dt || time >= kPushEnd + dt) return;
+    const NodeLine pressure =
+        contact_pressure(simulation, kCrestY, kFootingLeft, kFootingLeft + kFootingWidth);
+    contact_ratio = std::max(contact_ratio, contact_pressure_oddeven_ratio(pressure));
+    ++contact_samples;
+    if (time >= kPushEnd - 0.5 * dt) {
+      band = measure_wedge_band(simulation);
+      if (context.report) state = final_state(simulation, band->threshold);
+      contact = pressure;
+    }
+  });
+  SpeedRecorder speeds(description.output.probe_interval);
+  const std::filesystem::path run_directory =
+      run_for_validation(context, description, context.quick ? "quick" : "full", {},
+                         {&push_states, &speeds.observer()});
   const ProbeTable probes = ProbeTable::read(run_directory / "probes.csv");
   if (!band) throw RunError("vpw-vertical-cut-footing: the band was not measured");
+  if (contact_samples == 0)
+    throw RunError("vpw-vertical-cut-footing: no contact pressure sample on the plateau");
 
-  const double end = description.time.end;
   double plateau = 0.0;
   int samples = 0;
   const auto& time = probes.time();
-  for (std::size_t row = 0; row < time.size(); ++row)
-    if (time[row] >= 0.8 * end) {
-      plateau += footing_pressure(probes, row, footing_nodes);
-      ++samples;
-    }
+  // The rows from kPlateauStart up to the first one at or after kPushEnd: the same rows as when
+  // the run ended with the push (its last step lands just after 5 s).
+  for (std::size_t row = 0; row < time.size(); ++row) {
+    if (time[row] < kPlateauStart) continue;
+    plateau += footing_pressure(probes, row, footing_nodes);
+    ++samples;
+    if (time[row] >= kPushEnd) break;
+  }
   if (samples == 0) throw RunError("vpw-vertical-cut-footing: no probe sample on the plateau");
   plateau /= samples;
   const double limit = references::footing_on_cut_limit_pressure(
       references::von_mises_plane_strain_cohesion(kYieldStress));
-  if (context.report)
+  const double residual = residual_velocity_ratio(speeds.history(), kHoldStart);
+  if (context.report) {
     report_vertical_cut(*context.report, run_directory, probes, footing_nodes, spacing, limit,
-                        plateau, 0.8 * end, *band, state);
+                        plateau, kPlateauStart, *band, state);
+    Series measured{"SPH footing nodes", contact.x, {}, "line"};
+    for (double p : contact.value)
+      measured.y.push_back(1e-3 * p);
+    context.report->add_figure(
+        {"contact_pressure",
+         fmt::format("Contact pressure node by node at the end of the push, t = {:g} s (odd-even "
+                     "ratio, largest on the plateau: {:.4f})",
+                     kPushEnd, contact_ratio),
+         "x [m] (footing 6 <= x <= 8 m, crest at x = 8 m)",
+         "-sigma_yy (total) [kPa]",
+         {std::move(measured),
+          sample_curve("2 c_u = 2 Y / sqrt(3)", kFootingLeft, kFootingLeft + kFootingWidth, 2,
+                       [&](double) { return 1e-3 * limit; })}});
+    context.report->add_figure(speed_figure("max_velocity", speeds.history(), kHoldStart, 1e-3));
+    context.report->add_picture(
+        {"velocity", run_directory.string(), "velocity", -1, -1.0, 0.0,
+         fmt::format("Velocity magnitude at the end of the hold (footing stopped from t = {:g} s, "
+                     "damped from then on): largest {:.3g} m/s, {:.2g} of its peak during the "
+                     "hold.",
+                     kHoldStart, speeds.history().speed.back(), residual)});
+  }
 
   // 10 % (5 % in validation.md for a converged dry run): the collapse load of a Perzyna material
   // is within 1 % of 2c at this rate, the rest covers the footing edge resolved to dx/2 on B/dx = 8
   // (quick) or 16 nodes and the undrained-limit approximation.
+  // contact_pressure_oddeven_ratio 5 %: a rigid smooth footing at the limit load carries a smooth
+  // pressure (2c under the column, the edges excepted, which have a single neighbour and are left
+  // out); residual_velocity_ratio 1e-3 as slope-elastic.
   return {
       check_at_most("limit_pressure_error", relative_error(plateau, limit), 0.0, 0.10, "fraction"),
       check_within("shear_band_angle", band->primary.angle_deg,
                    references::j2_plane_strain_band_angle_deg(), 5.0, "deg"),
+      check_at_most("contact_pressure_oddeven_ratio", contact_ratio, 0.0, 0.05, "fraction"),
+      check_at_most("residual_velocity_ratio", residual, 0.0, 1e-3, "fraction"),
   };
 }
 

@@ -1,0 +1,55 @@
+// Hourglass stiffness of the stress-point cells (docs/theory.md §3.4, eqs. 3.2-3.4): the
+// Flanagan–Belytschko control of the odd–even (zero-energy) mode, in its stiffness form.
+//
+// With stress points at cell centres the cell's hourglass mode u_a = q h_a, h = (+1, -1, +1, -1)
+// around the corners, is invisible to every operator of the step, so a load with a kink (the edge
+// of a strip footing) does work on it that nothing resists: under damping the edge nodes creep at a
+// steady speed. Each cell gets the energy (k/2) |q|^2 of its hourglass coordinates
+//   q_i = sum_a gamma_a u_ia,  gamma = h - (h . x) b_x - (h . y) b_y,                     (3.2)
+// which is zero on linear (and rigid-body) displacement fields, with
+//   k = epsilon (M' + G) A sum_a |b_a|^2 / 24,                                             (3.3)
+// epsilon = 1 being the hourglass stiffness of the fully integrated bilinear element. Node n
+// receives the acceleration
+//   a_n = -(1 / (rho_n V_n)) sum_{cells P of n} k_P q_P gamma_{P,n},  V_n = sum_P A_P / 4.   (3.4)
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "rktsph/core/field_array.hpp"
+#include "rktsph/geometry/node_sets.hpp"
+
+namespace rktsph {
+
+class PhysicsModel;
+
+/// The per-cell data of eqs. 3.2-3.4 for a 2D lattice; empty (inactive) in 1D or when
+/// epsilon = 0.
+struct HourglassStiffness {
+  std::vector<std::array<std::int32_t, 4>> corners;  ///< counter-clockwise from the lower left
+  std::vector<std::array<double, 4>> gamma;          ///< hourglass vector of each cell (3.2)
+  std::vector<double> stiffness;                     ///< k of each cell [N/m per unit thickness]
+  std::vector<double> inverse_mass;                  ///< 1/(rho_n V_n) of each node [m/kg]
+  /// The cells of node n are cell_of[k], corner corner_of[k] for k in [node_start[n],
+  /// node_start[n+1]), so that the force on a node is a gather (parallel without atomics).
+  std::vector<std::int32_t> node_start;
+  std::vector<std::int32_t> cell_of;
+  std::vector<std::uint8_t> corner_of;
+
+  bool active() const { return !stiffness.empty(); }
+};
+
+/// Builds the control for the cells of `nodes` at the current node positions; `epsilon` is the
+/// fraction of the fully integrated element's hourglass stiffness (0 = off).
+HourglassStiffness build_hourglass_stiffness(const NodeSets& nodes, const PhysicsModel& model,
+                                             double epsilon);
+
+/// Adds the acceleration (3.4) of the displacement `displacement` (one field per axis) to the
+/// velocity rates `rate` (field velocity_field[a] for axis a). `coordinates` is scratch with two
+/// fields over the cells.
+void add_hourglass_acceleration(const HourglassStiffness& control, const FieldArray& displacement,
+                                const std::array<int, 2>& velocity_field, FieldArray& coordinates,
+                                FieldArray& rate);
+
+}  // namespace rktsph

@@ -1,0 +1,239 @@
+// The zero-energy-mode controls (docs/theory.md §3.4): the cells' hourglass stiffness (eqs.
+// 3.2-3.4) and the strain hourglass stiffness of nodal stress storage (eqs. 3.5-3.8).
+// - each vanishes on the displacement fields it must leave alone (patch test);
+// - each resists its mode with the stiffness the equations give;
+// - with them, a damped lattice under a traction with a kink has a static state (a fixed point of
+//   the step with zero velocity); without them it has none, and the kink drives a creep;
+// - the step stays stable (spectral radius <= 1 + 1e-8) with every boundary type and the kink,
+//   at h = 0.75 dx and 1.3 dx (to 1 + 1e-8: see kNeutral); the strain stiffness is stable below its
+//   limit (1 - C^2)/C^2 (eq. 3.7) and the case file refuses it above.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <string>
+
+#include "../support/elastic_block.hpp"
+#include "../support/step_matrix.hpp"
+#include "rktsph/case/case_reader.hpp"
+#include "rktsph/core/error.hpp"
+#include "rktsph/simulation/simulation.hpp"
+#include "rktsph/stabilisation/hourglass_stiffness.hpp"
+
+namespace rktsph {
+namespace {
+
+// rho = 2000 kg/m3, E = 10 MPa, nu = 0.3 (test::ElasticBlock): M = lambda + 2G, G.
+constexpr double kDensity = 2000.0;
+const double kShear = 1.0e7 / 2.6;
+const double kLambda = 1.0e7 * 0.3 / (1.3 * 0.4);
+const double kConstrained = kLambda + 2.0 * kShear;
+
+test::ElasticBlock block_with_controls(double epsilon, double epsilon_s, double courant = 0.5,
+                                       const std::string& h = "0.75") {
+  test::ElasticBlock block;
+  block.numerics = fmt::format(
+      "{{courant: {}, h_over_dx: {}, hourglass: {{stiffness: {}, strain_stiffness: {}}}}}", courant,
+      h, epsilon, epsilon_s);
+  return block;
+}
+
+TEST(HourglassStiffness, CellVectorsAndStiffnessOnTheLattice) {
+  Simulation simulation(block_with_controls(1.0, 0.0).description());
+  const HourglassStiffness& control = simulation.step().hourglass_stiffness();
+  ASSERT_TRUE(control.active());
+  ASSERT_EQ(control.corners.size(), simulation.nodes().stress_points.size());
+  for (std::size_t p = 0; p < control.corners.size(); ++p) {
+    // On a square the Flanagan–Belytschko vector is h itself (eq. 3.2) ...
+    const double h[4] = {1.0, -1.0, 1.0, -1.0};
+    for (int a = 0; a < 4; ++a)
+      EXPECT_NEAR(control.gamma[p][a], h[a], 1e-12);
+    // ... and epsilon = 1 is the fully integrated bilinear element's hourglass energy,
+    // k = (M + G)/12 (eq. 3.3).
+    EXPECT_NEAR(control.stiffness[p], (kConstrained + kShear) / 12.0, 1e-6 * kConstrained);
+  }
+}
+
+TEST(HourglassStiffness, LeavesLinearFieldsAndRigidRotationAloneAndResistsTheCheckerboard) {
+  const double epsilon = 0.4;
+  Simulation simulation(block_with_controls(epsilon, 0.0).description());
+  const HourglassStiffness& control = simulation.step().hourglass_stiffness();
+  const NodeSets& nodes = simulation.nodes();
+  const std::size_t n = nodes.sph_nodes.size();
+  FieldArray displacement(2, n), forces(2, nodes.stress_points.size()), rate(2, n);
+  // A linear field plus a small rigid rotation: no force anywhere.
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = nodes.sph_nodes.position[0][i], y = nodes.sph_nodes.position[1][i];
+    displacement(0, i) = 1e-3 + 2e-4 * x - 3e-4 * y;
+    displacement(1, i) = -2e-3 + 3e-4 * x + 5e-4 * y;
+  }
+  add_hourglass_acceleration(control, displacement, {0, 1}, forces, rate);
+  for (double a : rate.data())
+    EXPECT_NEAR(a, 0.0, 1e-9);
+  // The checkerboard u_x = U (-1)^(i+j): at an interior node -(16 k / (rho dx^2)) u_x (eq. 3.4).
+  const double amplitude = 1e-3;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& index = nodes.node_index[i];
+    displacement(0, i) = ((index[0] + index[1]) % 2 == 0 ? 1.0 : -1.0) * amplitude;
+    displacement(1, i) = 0.0;
+  }
+  std::fill(rate.data().begin(), rate.data().end(), 0.0);
+  add_hourglass_acceleration(control, displacement, {0, 1}, forces, rate);
+  const double k = epsilon * (kConstrained + kShear) / 12.0;
+  int interior = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& index = nodes.node_index[i];
+    if (index[0] == 0 || index[1] == 0 || index[0] == nodes.lattice_size[0] - 1 ||
+        index[1] == nodes.lattice_size[1] - 1)
+      continue;
+    EXPECT_NEAR(rate(0, i), -16.0 * k / kDensity * displacement(0, i), 1e-9 * k);
+    EXPECT_NEAR(rate(1, i), 0.0, 1e-12);
+    ++interior;
+  }
+  EXPECT_GT(interior, 10);
+}
+
+// A block between two mirror planes y = 0 and y = H, free faces x = 0 and x = W: u_x = a x,
+// u_y = b y with a = -(lambda/M) b, received by the nodal stress (e = (a, b, 0)), is a
+// free-face-consistent linear field, so the strain control must add nothing; the strain mode
+// u_x = U (-1)^i has A G u = 0 (the nodal stress receives nothing) and must meet the stiffness
+// epsilon_s D G u in the interior.
+TEST(StrainHourglassStiffness, NothingOnConsistentLinearFieldsAndFullStiffnessOnTheStrainMode) {
+  const double epsilon_s = 0.2;
+  test::ElasticBlock block;
+  // The velocity filter would also damp the mode by 1 - kappa in the step: off here.
+  block.numerics = fmt::format(
+      "{{courant: 0.5, hourglass: {{enabled: false, strain_stiffness: {}}}}}", epsilon_s);
+  block.conditions = {"{group: ymin, roller: y}", "{group: ymax, roller: y}"};
+  Simulation simulation(block.description());
+  const Simulation& view = simulation;
+  const NodeSets& nodes = view.nodes();
+  State& state = simulation.state();
+  const double dt = simulation.time_step();
+  const double b = 1e-4, a = -kLambda / kConstrained * b;
+  // u at rest, and e the strain the nodal stress has received: (e_xx, e_yy) = (a, b) for the
+  // linear field, zero for the strain mode (A G u = 0 there).
+  auto stress_after_one_step = [&](auto displacement, double received_xx, double received_yy) {
+    std::fill(state.fields.data().begin(), state.fields.data().end(), 0.0);
+    std::fill(state.strain.data().begin(), state.strain.data().end(), 0.0);
+    for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i) {
+      const auto [ux, uy] = displacement(i);
+      state.displacement(0, i) = ux;
+      state.displacement(1, i) = uy;
+      state.strain(0, i) = received_xx;
+      state.strain(1, i) = received_yy;
+    }
+    state.time = 0.0;
+    simulation.step().advance(state, dt);
+    return state.fields;
+  };
+  const FieldArray linear = stress_after_one_step(
+      [&](std::size_t i) {
+        return std::pair{a * nodes.sph_nodes.position[0][i], b * nodes.sph_nodes.position[1][i]};
+      },
+      a, b);
+  for (double value : linear.data())
+    EXPECT_NEAR(value, 0.0, 1e-9 * kConstrained * b);
+  const double amplitude = 1e-4;
+  const FieldArray mode = stress_after_one_step(
+      [&](std::size_t i) {
+        return std::pair{(nodes.node_index[i][0] % 2 == 0 ? 1.0 : -1.0) * amplitude, 0.0};
+      },
+      0.0, 0.0);
+  // Force on an interior node of the mode: 4 epsilon_s M (2U/dx) / dx ... as an acceleration,
+  // dv = -dt 4 epsilon_s M u_x / (rho dx^2) (one-point stiffness of the alternating strain).
+  int interior = 0;
+  for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i) {
+    const auto& index = nodes.node_index[i];
+    if (index[0] < 2 || index[1] < 2 || index[0] > nodes.lattice_size[0] - 3 ||
+        index[1] > nodes.lattice_size[1] - 3)
+      continue;
+    const double u = (index[0] % 2 == 0 ? 1.0 : -1.0) * amplitude;
+    EXPECT_NEAR(mode(0, i), -dt * 4.0 * epsilon_s * kConstrained * u / kDensity,
+                1e-6 * dt * kConstrained * amplitude / kDensity);
+    ++interior;
+  }
+  EXPECT_GT(interior, 5);
+}
+
+// Damped block on a rough base, free sides, a traction on part of the top: the kink at the load's
+// edge (docs/theory.md §3.4).
+test::ElasticBlock kinked_load_block(double epsilon, double epsilon_s, const std::string& h,
+                                     double damping) {
+  test::ElasticBlock block = block_with_controls(epsilon, epsilon_s, 0.5, h);
+  block.shapes = test::ElasticBlock::rectangle(10.0, 5.0);
+  block.conditions = {"{group: xmin, roller: x}", "{group: ymin, fixed: true}",
+                      "{group: load, traction: {y: -10000.0}}"};
+  block.groups = "{load: {box: {min: [0, 5], max: [3, 5]}}}";
+  if (damping > 0.0) block.loads = fmt::format("{{damping: {{coefficient: {}}}}}", damping);
+  return block;
+}
+
+double fixed_point_residual(double epsilon, double epsilon_s, double* velocity) {
+  Simulation simulation(kinked_load_block(epsilon, epsilon_s, "0.75", 20.0).description());
+  const double impedance = kDensity * simulation.model().max_wave_speed();
+  const test::AffineStep step = test::affine_step(simulation, impedance);
+  const Eigen::MatrixXd system =
+      Eigen::MatrixXd::Identity(step.matrix.rows(), step.matrix.cols()) - step.matrix;
+  const Eigen::VectorXd x = system.completeOrthogonalDecomposition().solve(step.constant);
+  *velocity = x.head(step.velocities).norm() / x.norm();
+  return (system * x - step.constant).norm() / step.constant.norm();
+}
+
+TEST(ZeroEnergyControlsSlow, AKinkedTractionHasAStaticStateOnlyWithTheControls) {
+  double velocity = 0.0;
+  // Without the controls the kink does work on a mode nothing resists: no static state.
+  EXPECT_GT(fixed_point_residual(0.0, 0.0, &velocity), 1e-3);
+  // With the cells' hourglass stiffness, and with both controls, there is one, at rest.
+  for (const auto& [epsilon, epsilon_s] : {std::pair{0.5, 0.0}, std::pair{0.5, 0.2}}) {
+    EXPECT_LT(fixed_point_residual(epsilon, epsilon_s, &velocity), 1e-10) << epsilon_s;
+    EXPECT_LT(velocity, 1e-10) << epsilon_s;
+  }
+}
+
+// With the controls the displacement and the received strain join the state, and the cluster of
+// static states at |lambda| = 1 grows (five neutral unknowns per node instead of the stresses'
+// few); its computed spread in long double reaches ~2e-9. 1e-8 per step would need 1e8 steps to
+// grow e-fold, a hundred times the longest run.
+constexpr double kNeutral = 1e-8;
+
+double radius(Simulation& simulation) {
+  const test::AffineStep step = test::affine_step(simulation, 1.0);
+  using LongMatrix = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
+  const Eigen::EigenSolver<LongMatrix> solver(step.matrix.cast<long double>(), false);
+  return static_cast<double>(solver.eigenvalues().cwiseAbs().maxCoeff());
+}
+
+TEST(ZeroEnergyControlsSlow, StepStaysStableWithTheKinkAtCompactAndWideStencils) {
+  for (const char* h : {"0.75", "1.3"}) {
+    test::ElasticBlock block = kinked_load_block(0.5, 0.2, h, 0.0);
+    block.shapes = test::ElasticBlock::rectangle(6.0, 4.0);
+    block.groups = "{load: {box: {min: [0, 4], max: [2, 4]}}}";
+    Simulation simulation(block.description());
+    const double r = radius(simulation);
+    EXPECT_LE(r, 1.0 + kNeutral) << "h/dx " << h << fmt::format(" radius - 1 = {:.3e}", r - 1.0);
+  }
+}
+
+TEST(ZeroEnergyControlsSlow, StrainStiffnessIsStableBelowItsLimitAndRejectedAbove) {
+  // (1 - C^2)/C^2 = 0.235 at C = 0.9 (eq. 3.7).
+  test::ElasticBlock block = kinked_load_block(0.0, 0.2, "0.75", 0.0);
+  block.shapes = test::ElasticBlock::rectangle(6.0, 4.0);
+  block.groups = "{load: {box: {min: [0, 4], max: [2, 4]}}}";
+  block.numerics = "{courant: 0.9, hourglass: {strain_stiffness: 0.2}}";
+  Simulation stable(block.description());
+  EXPECT_LE(radius(stable), 1.0 + kNeutral);
+  block.numerics = "{courant: 0.9, hourglass: {strain_stiffness: 0.3}}";
+  try {
+    Simulation rejected(block.description());
+    ADD_FAILURE() << "strain_stiffness 0.3 at C = 0.9 was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("strain_stiffness"), std::string::npos)
+        << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace rktsph
