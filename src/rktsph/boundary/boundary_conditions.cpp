@@ -86,6 +86,12 @@ BoundaryConditions::BoundaryConditions(
       rollers.emplace_back(axis, node);
   }
 
+  mirror_axes_.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    for (const MirrorPlane& m : mirror_planes_)
+      if (std::abs(nodes.sph_nodes.position[m.axis][i] - m.coordinate) <= tolerance)
+        mirror_axes_[i] |= static_cast<std::uint8_t>(1u << m.axis);
+
   // Faces: lattice directions with no neighbour node, unless a mirror plane closes them.
   for (std::size_t i = 0; i < n; ++i) {
     for (int a = 0; a < d; ++a)
@@ -93,12 +99,7 @@ BoundaryConditions::BoundaryConditions(
         LatticeIndex neighbour = nodes.node_index[i];
         neighbour[a] += sign;
         if (nodes.node_at(neighbour) >= 0) continue;
-        const double x = nodes.sph_nodes.position[a][i];
-        const bool mirrored =
-            std::any_of(mirror_planes_.begin(), mirror_planes_.end(), [&](const MirrorPlane& m) {
-              return m.axis == a && std::abs(m.coordinate - x) <= tolerance;
-            });
-        if (!mirrored) face_normals_[i].push_back(FaceNormal{a, sign});
+        if (!((mirror_axes_[i] >> a) & 1u)) face_normals_[i].push_back(FaceNormal{a, sign});
       }
   }
 

@@ -34,6 +34,8 @@ class BoundaryConditions {
 
   /// Mirror planes of the rollers with `mirror: true`; they enter every operator.
   const std::vector<MirrorPlane>& mirror_planes() const { return mirror_planes_; }
+  /// Per node, bit a set when the node lies on a mirror plane normal to axis a.
+  std::span<const std::uint8_t> mirror_axes() const { return mirror_axes_; }
 
   /// Bit a set: node's stress increments are projected so that sigma_aa is kept (a face with
   /// normal along a whose normal velocity is not imposed; prototype R2).
@@ -80,6 +82,7 @@ class BoundaryConditions {
   int add_function(const TimeFunction& f);
 
   std::vector<MirrorPlane> mirror_planes_;
+  std::vector<std::uint8_t> mirror_axes_;
   std::vector<std::vector<FaceNormal>> face_normals_;
   std::vector<std::uint8_t> velocity_axes_;
   std::vector<std::uint8_t> projected_axes_;

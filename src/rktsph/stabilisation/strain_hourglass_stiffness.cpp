@@ -20,10 +20,10 @@ StrainHourglassStiffness::StrainHourglassStiffness(
   if (model.dimension() != 2 || !(epsilon > 0.0)) return;
   epsilon_ = epsilon;
   const std::size_t node_count = mirror_axes.size();
-  std::vector<std::int32_t> nodes(node_count);
-  std::iota(nodes.begin(), nodes.end(), 0);
+  std::vector<std::int32_t> targets(node_count);
+  std::iota(targets.begin(), targets.end(), 0);
   const std::vector<std::int32_t> no_own_value(node_count, -1);
-  node_average_ = build_adjoint_operator(to_points, point_volume, nodes, no_own_value);
+  node_average_ = build_adjoint_operator(to_points, point_volume, targets, no_own_value);
   for (std::size_t n = 0; n < node_count; ++n)
     if (mirror_axes[n] != 0) {
       mirror_nodes_.push_back(static_cast<std::int32_t>(n));
@@ -51,6 +51,7 @@ StrainHourglassStiffness::StrainHourglassStiffness(
   strain_ = FieldArray(3, points);
   node_strain_ = FieldArray(3, node_count);
   point_strain_ = FieldArray(3, points);
+  // Only the four velocity-gradient slots are ever written (add_stress); the others stay zero.
   model_gradient_ = FieldArray(model.field_count() * 2, points);
   rate_ = FieldArray(model.field_count(), points);
 }
@@ -77,6 +78,7 @@ void StrainHourglassStiffness::apply_face_rule(const ConstrainedNode& rule,
     return (*fields)(stress_field_[static_cast<std::size_t>(k)], n) -
            rule.reference[static_cast<std::size_t>(k)];
   };
+  double* normal[2] = {xx, yy};
   const bool fix_xx = rule.imposed[kXX], fix_yy = rule.imposed[kYY];
   if (rule.imposed[kXY]) xy[n] = transpose ? 0.0 : increment(kXY) / (2.0 * shear);
   if (fix_xx && fix_yy) {
@@ -88,37 +90,32 @@ void StrainHourglassStiffness::apply_face_rule(const ConstrainedNode& rule,
       xx[n] = (modulus * sxx - lambda * syy) / det;
       yy[n] = (modulus * syy - lambda * sxx) / det;
     }
-  } else if (fix_xx) {
+  } else if (fix_xx || fix_yy) {
+    const int a = fix_xx ? kXX : kYY;  // the imposed normal component
+    double* imposed = normal[a];
+    double* free = normal[1 - a];
     if (transpose) {
-      yy[n] -= lambda / modulus * xx[n];
-      xx[n] = 0.0;
+      free[n] -= lambda / modulus * imposed[n];
+      imposed[n] = 0.0;
     } else {
-      xx[n] = (increment(kXX) - lambda * yy[n]) / modulus;
-    }
-  } else if (fix_yy) {
-    if (transpose) {
-      xx[n] -= lambda / modulus * yy[n];
-      yy[n] = 0.0;
-    } else {
-      yy[n] = (increment(kYY) - lambda * xx[n]) / modulus;
+      imposed[n] = (increment(a) - lambda * free[n]) / modulus;
     }
   }
 }
 
-void StrainHourglassStiffness::zero_odd_on_mirrors() {
+void StrainHourglassStiffness::average_to_nodes(const FieldArray& x) {
+  std::fill(node_strain_.data().begin(), node_strain_.data().end(), 0.0);
+  add_adjoint_interpolation(node_average_, x, strain_parity_, every_, node_strain_);
   for (std::size_t k = 0; k < mirror_nodes_.size(); ++k)  // odd across the plane: zero there
     for (std::size_t f = 0; f < 3; ++f)
       if ((strain_parity_[f] & mirror_bits_[k]) != 0)
         node_strain_.field(static_cast<int>(f))[mirror_nodes_[k]] = 0.0;
 }
 
-void StrainHourglassStiffness::remove_received(const WeightTable& to_points, FieldArray& x,
-                                               const FieldArray* fields, bool transpose) {
-  std::fill(node_strain_.data().begin(), node_strain_.data().end(), 0.0);
-  add_adjoint_interpolation(node_average_, x, strain_parity_, every_, node_strain_);
-  zero_odd_on_mirrors();
+void StrainHourglassStiffness::remove_received_stress(const WeightTable& to_points, FieldArray& x) {
+  average_to_nodes(x);
   for (const ConstrainedNode& rule : constrained_)
-    apply_face_rule(rule, fields, transpose);
+    apply_face_rule(rule, nullptr, true);
   apply_operator(to_points, node_strain_, strain_parity_, &point_strain_, nullptr);
   std::vector<double>& values = x.data();
   const std::vector<double>& received = point_strain_.data();
@@ -146,13 +143,11 @@ void StrainHourglassStiffness::add_stress(const PhysicsModel& model, const Weigh
   };
   // e^{n+1/2} = e^n + dt/2 A(G v^n): the strain the nodal stress has received, half a step on.
   symmetric(point_gradient, vx * 2, vx * 2 + 1, vy * 2, vy * 2 + 1);
-  std::fill(node_strain_.data().begin(), node_strain_.data().end(), 0.0);
-  add_adjoint_interpolation(node_average_, strain_, strain_parity_, every_, node_strain_);
+  average_to_nodes(strain_);
   const std::vector<double>& integral = strain.data();
   std::vector<double>& received = node_strain_.data();
   for (std::size_t k = 0; k < received.size(); ++k)
     received[k] = integral[k] + 0.5 * dt * received[k];
-  zero_odd_on_mirrors();
   for (const ConstrainedNode& rule : constrained_)
     apply_face_rule(rule, &fields, false);
   // r = G u^{n+1/2} - I P(e^{n+1/2}) (eq. 3.5).
@@ -162,7 +157,6 @@ void StrainHourglassStiffness::add_stress(const PhysicsModel& model, const Weigh
   for (std::size_t k = 0; k < strain_.data().size(); ++k)
     strain_.data()[k] -= point_strain_.data()[k];
   // tau = epsilon D : r, the model's stress rate for the "velocity gradient" epsilon r.
-  std::fill(model_gradient_.data().begin(), model_gradient_.data().end(), 0.0);
   for (std::int64_t p = 0; p < points; ++p) {
     const auto i = static_cast<std::size_t>(p);
     model_gradient_(vx * 2 + 0, i) = epsilon_ * strain_(kXX, i);
@@ -173,7 +167,7 @@ void StrainHourglassStiffness::add_stress(const PhysicsModel& model, const Weigh
   model.flux_rate(point_material, model_gradient_, rate_);
   for (int k = 0; k < 3; ++k)
     std::copy_n(rate_.field(stress_field_[static_cast<std::size_t>(k)]), points, strain_.field(k));
-  remove_received(to_points, strain_, nullptr, true);  // eq. 3.6
+  remove_received_stress(to_points, strain_);  // eq. 3.6
   for (int k = 0; k < 3; ++k) {
     const double* tau = strain_.field(k);
     double* value = point_values.field(stress_field_[static_cast<std::size_t>(k)]);

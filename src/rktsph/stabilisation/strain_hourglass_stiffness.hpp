@@ -10,12 +10,13 @@
 // free face, a roller) the nodal stress does not see those strain components at all: there the
 // strain the stress "received" is the one consistent with the imposed stress (eq. 3.8), so that
 // the modes of a face are controlled too. The control adds the energy
-//   E_s = (epsilon_s / 2) sum_P V_P r_P : D : r_P,   r = G u - I P(A G u)                  (3.5)
-// with P the identity except at constrained nodes (eq. 3.8), whose force is the momentum closure
-// applied to the stress-point stress
+//   E_s = (epsilon_s / 2) sum_P V_P r_P : D : r_P,   r = sym(G u) - I P(e)                 (3.5)
+// with e the strain the nodal stress received (the integral of the nodal velocity gradient, which
+// in the interior is A G u up to the Lax-Wendroff terms) and P the identity except at constrained
+// nodes (eq. 3.8). Its force is the momentum closure applied to the stress-point stress
 //   tau~ = tau - I P*(A tau),   tau = epsilon_s D : r                                     (3.6)
-// (A is the volume-weighted adjoint of I, P* the transpose of P's linear part, so this is the
-// exact gradient of E_s and the step stays stable up to eq. 3.7's limit).
+// (A is the volume-weighted adjoint of I, P* the transpose of P's linear part: the second term is
+// the force through e's dependence on the motion, and the step stays stable up to eq. 3.7).
 #pragma once
 
 #include <array>
@@ -47,7 +48,6 @@ class StrainHourglassStiffness {
                            std::span<const std::int32_t> node_material, double epsilon);
 
   bool active() const { return epsilon_ > 0.0; }
-  double epsilon() const { return epsilon_; }
 
   /// The imposed stresses at t = 0 (the state after its conditions), against which eq. 3.8
   /// measures the imposed stress increments.
@@ -73,11 +73,11 @@ class StrainHourglassStiffness {
     std::array<double, 3> reference{};  // their imposed values at t = 0
     std::array<double, 3> moduli{};     // M', lambda', G
   };
-  // x <- x - I(A x) with P (affine, strains) or P* (linear, stresses) applied on the nodes.
-  void remove_received(const WeightTable& to_points, FieldArray& x, const FieldArray* fields,
-                       bool transpose);
+  // node_strain_ <- A x, zero where x is odd across a mirror plane the node lies on.
+  void average_to_nodes(const FieldArray& x);
+  // x <- x - I P*(A x) (eq. 3.6).
+  void remove_received_stress(const WeightTable& to_points, FieldArray& x);
   void apply_face_rule(const ConstrainedNode& rule, const FieldArray* fields, bool transpose);
-  void zero_odd_on_mirrors();
 
   double epsilon_ = 0.0;
   AdjointOperator node_average_;       // A: b_Pn = V_P w_Pn / V_n over every node

@@ -185,11 +185,6 @@ StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& opt
       ops.compact_stencils ? HourglassFields::Velocity : HourglassFields::All);
   ops.hourglass_stiffness = options.hourglass_stiffness;
   ops.strain_hourglass_stiffness = options.strain_hourglass_stiffness;
-  ops.mirror_axes.assign(n, 0);
-  for (std::size_t i = 0; i < n; ++i)
-    for (const MirrorPlane& plane : mirrors)
-      if (std::abs(nodes.sph_nodes.position[plane.axis][i] - plane.coordinate) <= 1e-6 * dx)
-        ops.mirror_axes[i] |= static_cast<std::uint8_t>(1u << plane.axis);
   ops.viscosity_length = options.artificial_viscosity * dx;
   if (ops.hourglass_filter) {
     OperatorOptions filter_options = operator_options;
@@ -256,7 +251,7 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
   hourglass_stiffness_ = build_hourglass_stiffness(nodes, model, operators_.hourglass_stiffness);
   if (hourglass_stiffness_.active()) hourglass_force_ = FieldArray(2, nv);
   strain_hourglass_stiffness_ = StrainHourglassStiffness(
-      model, operators_.nodes_to_points, nodes.stress_points.volume, operators_.mirror_axes,
+      model, operators_.nodes_to_points, nodes.stress_points.volume, conditions.mirror_axes(),
       conditions.constrained_stress(), nodes.node_material, operators_.strain_hourglass_stiffness);
   if (operators_.hourglass_filter) {
     const auto values = filtered_fields_.size();

@@ -52,8 +52,6 @@ struct StepOperators {
   HourglassFields hourglass_fields = HourglassFields::Velocity;
   double hourglass_stiffness = 0.0;         ///< epsilon of the cells' hourglass stiffness (eq. 3.3)
   double strain_hourglass_stiffness = 0.0;  ///< epsilon_s of eq. 3.5
-  /// Bit a: the node lies on a mirror plane normal to axis a.
-  std::vector<std::uint8_t> mirror_axes;
   /// Every stress point's stencil is its own cell's corners (h small enough): the lattice
   /// operators then commute in the interior (docs/theory.md §5.3).
   bool compact_stencils = false;
