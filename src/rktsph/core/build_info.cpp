@@ -2,13 +2,8 @@
 
 #include <fmt/format.h>
 
-// Only this file gets the commit as a definition, so a new commit recompiles one file, not all.
-#ifndef RKTSPH_COMMIT
-#define RKTSPH_COMMIT "unknown"
-#endif
-#ifndef RKTSPH_BUILD_TYPE
-#define RKTSPH_BUILD_TYPE "unknown"
-#endif
+// RKTSPH_COMMIT and RKTSPH_BUILD_TYPE, written by CMakeLists.txt at configure time.
+#include "rktsph/build_commit.hpp"
 
 namespace rktsph {
 

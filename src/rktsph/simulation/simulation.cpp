@@ -239,7 +239,7 @@ RunStatus Simulation::run() {
     }
     try {
       step_->advance(state_, time_step_);
-    } catch (const RunError& error) {  // e.g. a pressure solve that does not converge
+    } catch (const std::exception& error) {  // e.g. a pressure solve that does not converge
       message_ = fmt::format("failed at step {} (t = {:.6g} s): {}", state_.step + 1,
                              state_.time + time_step_, error.what());
       status = RunStatus::Failed;
