@@ -35,7 +35,7 @@ build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
 run: deps build
-	$(BUILD_DIR)/rktsph run $(CASE) -o $(RESULTS)/$(notdir $(patsubst %/,%,$(dir $(CASE))))
+	$(BUILD_DIR)/rktsph run $(CASE) --overwrite -o $(RESULTS)/$(notdir $(patsubst %/,%,$(dir $(CASE))))
 	@echo
 	@echo "Results are in $(RESULTS)/$(notdir $(patsubst %/,%,$(dir $(CASE)))) (open series.pvd in ParaView)."
 

@@ -1,6 +1,8 @@
 // rktsph — command line: run, check, validate, plot.
-// Exit status: 0 success, 1 validation failed, 2 bad input (case file or arguments),
-// 3 a run diverged or could not proceed.
+// Exit status: 0 success, 1 validation failed, 2 bad input (case file, arguments, an output
+// folder that cannot be created or holds results without --overwrite), 3 a run diverged, failed
+// or could not proceed (also: output folder in use by another run), 130/143 interrupted by
+// SIGINT/SIGTERM.
 #include <fmt/format.h>
 #include <omp.h>
 #include <sys/wait.h>
@@ -8,12 +10,15 @@
 #include <CLI/CLI.hpp>
 
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
 
 #include "rktsph/case/case_reader.hpp"
+#include "rktsph/core/build_info.hpp"
 #include "rktsph/core/error.hpp"
+#include "rktsph/driver/interrupt.hpp"
 #include "rktsph/driver/run_case.hpp"
 #include "rktsph/simulation/simulation.hpp"
 #include "rktsph/validation/validation_case.hpp"
@@ -83,8 +88,46 @@ int run_tool(const std::string& script, std::vector<std::string> arguments) {
   return status;
 }
 
+// A count option: "abc" is "not an integer", 0 or 5000 "not in 1..1024" (CLI11's range check
+// alone calls every non-number "not in range").
+CLI::Validator integer_in_range(int low, int high) {
+  return CLI::Validator(
+      [low, high](std::string& text) -> std::string {
+        int value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, error] = std::from_chars(text.data(), end, value);
+        const bool digits_only =
+            stop == end && (error == std::errc() || error == std::errc::result_out_of_range);
+        if (!digits_only)
+          return fmt::format("'{}' is not an integer (expected a whole number in {}..{})", text,
+                             low, high);
+        if (error != std::errc() || value < low || value > high)
+          return fmt::format("'{}' is not in {}..{}", text, low, high);
+        return {};
+      },
+      fmt::format("INT in [{} - {}]", low, high));
+}
+
+// `rktsph foo`: CLI11 would only say "A subcommand is required".
+bool reject_unknown_command(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return false;
+  std::string known;
+  for (const CLI::App* command : app.get_subcommands({})) {
+    if (command->get_name() == argv[1]) return false;
+    known += (known.empty() ? "" : ", ") + command->get_name();
+  }
+  std::cerr << fmt::format("rktsph: unknown command '{}'; the commands are {} (rktsph --help)\n",
+                           argv[1], known);
+  return true;
+}
+
+// 128 + the signal, as a shell reports a program ended by it: 130 for SIGINT, 143 for SIGTERM.
+int interrupted_exit_status() {
+  return 128 + InterruptHandler::received_signal();
+}
+
 int command_run(const std::string& case_path, const std::string& output, int threads,
-                const std::vector<std::string>& sets, bool quiet) {
+                const std::vector<std::string>& sets, bool quiet, bool overwrite) {
   if (threads > 0) omp_set_num_threads(threads);
   const CaseDescription description = read_case_file(case_path, parse_overrides(sets));
   const std::filesystem::path directory = output.empty()
@@ -94,7 +137,15 @@ int command_run(const std::string& case_path, const std::string& output, int thr
   options.quiet = quiet;
   options.progress_stream = &std::cerr;
   options.progress_is_terminal = isatty(STDERR_FILENO) != 0;
+  options.existing_results = overwrite ? ExistingResults::Overwrite : ExistingResults::Refuse;
+  const InterruptHandler interrupts;
+  options.stop_check = &InterruptHandler::stop_reason;
   const RunOutcome outcome = run_case(description, directory, options);
+  if (outcome.status == RunStatus::Interrupted) {
+    std::cerr << "rktsph: " << outcome.message << "\n"
+              << "rktsph: the results up to that step are in " << directory.string() << "\n";
+    return interrupted_exit_status();
+  }
   if (outcome.status != RunStatus::Completed) {
     std::cerr << "rktsph: " << outcome.message << "\n"
               << "rktsph: the last good output is kept in " << directory.string() << "\n";
@@ -203,21 +254,24 @@ int command_plot(const std::string& run_directory, const std::string& field, int
 
 int main(int argc, char** argv) {
   CLI::App app{"rktsph: Runge-Kutta Taylor SPH for the dynamics of dry and saturated soils"};
-  app.set_version_flag("--version", std::string("rktsph ") + RKTSPH_VERSION);
+  app.set_version_flag("--version", std::string("rktsph ") + version_text());
   app.require_subcommand(1);
 
   std::string case_path, output;
   int threads = 0;
   std::vector<std::string> sets;
-  bool quiet = false;
+  bool quiet = false, overwrite = false;
 
   CLI::App* run = app.add_subcommand("run", "Run a case file and write its results");
   run->add_option("case", case_path, "Case file (YAML)")->required();
   run->add_option("-o,--output", output, "Output folder (default results/<case name>)");
   run->add_option("--threads", threads, "OpenMP threads (default: all cores)")
-      ->check(CLI::Range(1, 1024));
+      ->check(integer_in_range(1, 1024));
   run->add_option("--set", sets, "Override a case key: --set time.end=0.1 (repeatable)");
   run->add_flag("-q,--quiet", quiet, "No progress display");
+  run->add_flag("--overwrite", overwrite,
+                "Replace the results of an earlier run in the output folder (only rktsph's own "
+                "files are removed)");
 
   CLI::App* check = app.add_subcommand("check", "Validate a case file without running it");
   check->add_option("case", case_path, "Case file (YAML)")->required();
@@ -232,7 +286,7 @@ int main(int argc, char** argv) {
   validate->add_flag("--quick", quick, "Coarser, shorter variants (as run by make test)");
   validate->add_flag("--json", json, "One JSON object per case per line");
   validate->add_option("-o,--output", output, "Folder for the runs (default results/validation)");
-  validate->add_option("--threads", threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+  validate->add_option("--threads", threads, "OpenMP threads")->check(integer_in_range(1, 1024));
   std::string report;
   validate->add_option("--report", report,
                        "Also write a report with plots to this folder (index.html, index.md); "
@@ -255,6 +309,7 @@ int main(int argc, char** argv) {
                    "Draw particles at x + M * displacement (default 0: undeformed)");
   plot->add_option("-o,--output", output, "PNG file to write")->required();
 
+  if (reject_unknown_command(app, argc, argv)) return kExitInput;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -263,7 +318,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*run) return command_run(case_path, output, threads, sets, quiet);
+    if (*run) return command_run(case_path, output, threads, sets, quiet, overwrite);
     if (*check) return command_check(case_path, sets);
     if (*validate) return command_validate(names, all, quick, json, output, report, threads);
     if (*plot)

@@ -1,11 +1,18 @@
 // The rktsph command line as a user meets it: exit statuses, errors that name the file, line and
 // key, a run's files (read back by an independent parser), and a diverging run.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <thread>
 
 #include "../support/shell.hpp"
 
@@ -55,12 +62,201 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   return text;
 }
 
+std::string read_whole_file(const fs::path& path) {
+  std::ifstream stream(path, std::ios::binary);
+  std::ostringstream content;
+  content << stream.rdbuf();
+  return content.str();
+}
+
+std::size_t field_files(const fs::path& run_directory) {
+  return static_cast<std::size_t>(
+      std::distance(fs::directory_iterator(run_directory / "fields"), {}));
+}
+
 TEST(CommandLine, VersionAndHelp) {
   const Result version = run("--version");
   EXPECT_EQ(version.status, 0);
   EXPECT_NE(version.output.find("rktsph "), std::string::npos);
   EXPECT_EQ(run("run --help").status, 0);
   EXPECT_EQ(run("no-such-command").status, 2);
+}
+
+TEST(CommandLine, VersionNamesTheCommitAndTheBuildType) {
+  const Result version = run("--version");
+  EXPECT_NE(version.output.find("rktsph " RKTSPH_VERSION " (commit "), std::string::npos)
+      << version.output;
+  EXPECT_NE(version.output.find(" build)"), std::string::npos) << version.output;
+}
+
+TEST(CommandLine, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
+  const Result result = run("foo");
+  EXPECT_EQ(result.status, 2);
+  EXPECT_NE(result.output.find("unknown command 'foo'"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("run, check, validate, plot"), std::string::npos) << result.output;
+}
+
+TEST(CommandLine, ThreadsThatAreNotANumberAreCalledSo) {
+  const fs::path path = write_case("threads.yaml", kBar);
+  const Result text =
+      run("run -q " + path.string() + " --threads abc -o " + scratch("threads").string());
+  EXPECT_EQ(text.status, 2);
+  EXPECT_NE(text.output.find("'abc' is not an integer"), std::string::npos) << text.output;
+  const Result zero = run("run -q " + path.string() + " --threads 0");
+  EXPECT_EQ(zero.status, 2);
+  EXPECT_NE(zero.output.find("'0' is not in 1..1024"), std::string::npos) << zero.output;
+}
+
+TEST(CommandLine, AnOutputFolderThatCannotBeCreatedIsBadInputWithTheSystemReason) {
+  const Result result =
+      run("run -q " + write_case("unwritable.yaml", kBar).string() + " -o /dev/null/run");
+  EXPECT_EQ(result.status, 2) << result.output;
+  EXPECT_NE(result.output.find("'/dev/null/run'"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("Not a directory"), std::string::npos) << result.output;
+}
+
+TEST(CommandLine, ASecondRunIntoAFolderInUseFailsAtOnceNamingTheHolder) {
+  const fs::path out = scratch("busy");
+  fs::create_directories(out);
+  // This test holds the folder's lock as a running rktsph would.
+  const int lock = ::open((out / ".rktsph.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(lock, 0);
+  ASSERT_EQ(::flock(lock, LOCK_EX), 0);
+  const std::string pid = std::to_string(::getpid()) + "\n";
+  ASSERT_EQ(::pwrite(lock, pid.data(), pid.size(), 0), static_cast<ssize_t>(pid.size()));
+  const Result result =
+      run("run -q " + write_case("busy.yaml", kBar).string() + " -o " + out.string());
+  ::close(lock);
+  EXPECT_EQ(result.status, 3) << result.output;
+  EXPECT_NE(result.output.find("'" + out.string() + "' is in use by another rktsph run (pid " +
+                               std::to_string(::getpid()) + ")"),
+            std::string::npos)
+      << result.output;
+  EXPECT_FALSE(fs::exists(out / "summary.json"));  // the folder was not touched
+}
+
+TEST(CommandLine, AnEarlierRunsResultsAreRefusedUnlessOverwriteWhichRemovesThem) {
+  const fs::path out = scratch("reused");
+  fs::remove_all(out);
+  const std::string many = replaced(kBar, "output: {interval: 0.01}", "output: {interval: 0.002}");
+  ASSERT_EQ(run("run -q " + write_case("many.yaml", many).string() + " -o " + out.string()).status,
+            0);
+  const std::size_t before = field_files(out);
+  ASSERT_GT(before, 10u);
+  std::ofstream(out / "notes.txt") << "mine\n";
+  const std::string few = write_case("few.yaml", kBar).string();
+  const Result refused = run("run -q " + few + " -o " + out.string());
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("holds the results of an earlier run"), std::string::npos)
+      << refused.output;
+  EXPECT_NE(refused.output.find("--overwrite"), std::string::npos) << refused.output;
+  EXPECT_EQ(field_files(out), before);
+
+  const Result replaced_run = run("run -q --overwrite " + few + " -o " + out.string());
+  ASSERT_EQ(replaced_run.status, 0) << replaced_run.output;
+  EXPECT_EQ(field_files(out), 6u);  // t = 0, 0.01, ..., 0.05: none of the earlier run's
+  EXPECT_EQ(read_whole_file(out / "notes.txt"), "mine\n");
+}
+
+TEST(CommandLine, TemporariesOfAKilledRunAreRemovedAndPlantedLinksNotFollowed) {
+  const fs::path out = scratch("stale");
+  fs::remove_all(out);
+  fs::create_directories(out / "fields");
+  std::ofstream(out / "fields" / "fields_000003.vtu.tmp-99999") << "partial";
+  const fs::path victim = scratch("victim.txt");
+  std::ofstream(victim) << "precious\n";
+  fs::create_symlink(victim, out / "summary.json.tmp-99999");
+  const Result result =
+      run("run -q " + write_case("stale.yaml", kBar).string() + " -o " + out.string());
+  ASSERT_EQ(result.status, 0) << result.output;
+  for (const auto& entry : fs::recursive_directory_iterator(out))
+    EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
+  EXPECT_EQ(read_whole_file(victim), "precious\n");
+  EXPECT_EQ(fs::symlink_status(out / "summary.json").type(), fs::file_type::regular);
+  EXPECT_NE(read_whole_file(out / "run.log").find("removed 2 temporary files"), std::string::npos);
+}
+
+// A write the system refuses mid-run (a file-size limit stands in for a full disk: probes.csv
+// outgrows it) ends the run as failed, names the file and the reason, and keeps the last
+// complete files.
+TEST(CommandLine, AnOutputTheSystemRefusesEndsTheRunAsFailedWithItsReason) {
+  const fs::path out = scratch("refused");
+  fs::remove_all(out);
+  const std::string text = replaced(replaced(kBar, "time: {end: 0.05}", "time: {end: 2.0}"),
+                                    "output: {interval: 0.01}", "output: {interval: 0.1}");
+  // 32 blocks of 512 bytes: the field files (about 5 KB) and the summary fit, the probe history
+  // (about 50 bytes a step, every step) does not.
+  const Result result = rktsph::test::shell(
+      "trap '' XFSZ; ulimit -f 32 && " + std::string(RKTSPH_BINARY) + " run -q " +
+      write_case("refused.yaml", text).string() + " -o " + out.string() + " 2>&1");
+  EXPECT_EQ(result.status, 3) << result.output;
+  EXPECT_NE(result.output.find("probes.csv"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("File too large"), std::string::npos) << result.output;
+  const std::string summary = read_whole_file(out / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"failed\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("File too large"), std::string::npos) << summary;
+  const std::string probes = read_whole_file(out / "probes.csv");
+  ASSERT_FALSE(probes.empty());
+  EXPECT_EQ(probes.back(), '\n');  // the last complete version
+  EXPECT_EQ(probes.find(".tmp-"), std::string::npos);
+  std::string last_line;
+  for (std::istringstream lines(read_whole_file(out / "run.log")); std::getline(lines, last_line);)
+    if (lines.peek() == EOF) break;
+  EXPECT_NE(last_line.find("ERROR failed:"), std::string::npos) << last_line;
+}
+
+// Starts rktsph in the background (SIGINT not ignored, as under a terminal), waits until its
+// loop runs, sends `signal_number` and returns the exit status.
+int interrupted_run(const fs::path& out, int signal_number) {
+  const std::string text =
+      replaced(replaced(kBar, "time: {end: 0.05}", "time: {end: 1.0e5, max_steps: 100000000}"),
+               "output: {interval: 0.01}", "output: {interval: 1000.0}");
+  const std::string case_path = write_case("long.yaml", text).string();
+  const std::string output = out.string();
+  const pid_t child = ::fork();
+  if (child == 0) {
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    ::execl(RKTSPH_BINARY, RKTSPH_BINARY, "run", "-q", case_path.c_str(), "-o", output.c_str(),
+            static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // probes.csv is written once the loop is about to start; polling is only for the wait.
+  while (!fs::exists(out / "probes.csv") && ::waitpid(child, nullptr, WNOHANG) == 0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ::kill(child, signal_number);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+void expect_interrupted_record(const fs::path& out, const std::string& signal_name) {
+  const std::string summary = read_whole_file(out / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"interrupted\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find(signal_name + " received"), std::string::npos) << summary;
+  EXPECT_NE(read_whole_file(out / "run.log").find("ERROR interrupted: interrupted at step"),
+            std::string::npos);
+  // The probes on disk reach the step it stopped at (step 0 if the signal came that early).
+  const std::size_t key = summary.find("\"simulated_time\": ");
+  ASSERT_NE(key, std::string::npos) << summary;
+  const double stopped_at = std::stod(summary.substr(key + 18));
+  const std::string probes = read_whole_file(out / "probes.csv");
+  const std::size_t last_row = probes.rfind('\n', probes.size() - 2) + 1;
+  EXPECT_EQ(std::stod(probes.substr(last_row)), stopped_at) << probes.substr(last_row);
+}
+
+TEST(CommandLine, SigintFinishesTheStepWritesTheRecordAndExits130) {
+  const fs::path out = scratch("sigint");
+  fs::remove_all(out);
+  EXPECT_EQ(interrupted_run(out, SIGINT), 130);
+  expect_interrupted_record(out, "SIGINT");
+}
+
+TEST(CommandLine, SigtermFinishesTheStepWritesTheRecordAndExits143) {
+  const fs::path out = scratch("sigterm");
+  fs::remove_all(out);
+  EXPECT_EQ(interrupted_run(out, SIGTERM), 143);
+  expect_interrupted_record(out, "SIGTERM");
 }
 
 TEST(CommandLine, CheckAcceptsAGoodCase) {

@@ -1,7 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -111,6 +115,101 @@ TEST_F(AtomicFileTest, RenameOntoADirectoryThrowsRunErrorAndCleansUp) {
   EXPECT_THROW(write_file_atomically(target, std::string("x")), RunError);
   EXPECT_TRUE(fs::is_directory(target));
   EXPECT_FALSE(fs::exists(temporary_path_for(target)));
+}
+
+TEST_F(AtomicFileTest, PlantedSymlinkAtTheTemporaryNameIsNotFollowed) {
+  // Someone who can predict the temporary name plants a link to a file of theirs there.
+  const fs::path victim = directory_ / "victim.txt";
+  std::ofstream(victim) << "precious\n";
+  const fs::path summary = directory_ / "summary.json";
+  fs::create_symlink(victim, temporary_path_for(summary));
+  write_file_atomically(summary, std::string("{}\n"));
+  EXPECT_EQ(read_whole_file(victim), "precious\n");
+  EXPECT_EQ(fs::symlink_status(summary).type(), fs::file_type::regular);
+  EXPECT_EQ(read_whole_file(summary), "{}\n");
+  // The planted link is left alone (a next run's stale-temporary sweep removes it).
+  EXPECT_TRUE(fs::is_symlink(temporary_path_for(summary)));
+}
+
+TEST_F(AtomicFileTest, SymlinkAtTheDestinationIsReplacedNotWrittenThrough) {
+  const fs::path victim = directory_ / "victim.txt";
+  std::ofstream(victim) << "precious\n";
+  const fs::path summary = directory_ / "summary.json";
+  fs::create_symlink(victim, summary);
+  write_file_atomically(summary, std::string("{}\n"));
+  EXPECT_EQ(read_whole_file(victim), "precious\n");
+  EXPECT_EQ(fs::symlink_status(summary).type(), fs::file_type::regular);
+}
+
+TEST_F(AtomicFileTest, TemporaryNamesAreRecognisedAndNothingElse) {
+  EXPECT_TRUE(is_temporary_file_name(temporary_path_for(directory_ / "a.csv").filename().string()));
+  EXPECT_TRUE(is_temporary_file_name("fields_000003.vtu.tmp-4242"));
+  EXPECT_TRUE(is_temporary_file_name("summary.json.tmp-4242-7"));
+  EXPECT_FALSE(is_temporary_file_name("summary.json"));
+  EXPECT_FALSE(is_temporary_file_name("notes.tmp-draft"));
+  EXPECT_FALSE(is_temporary_file_name(".tmp-12"));
+  EXPECT_FALSE(is_temporary_file_name("a.tmp-"));
+  EXPECT_FALSE(is_temporary_file_name("a.tmp-12-"));
+}
+
+// A full disk cannot be made in a test, but /dev/full fails every write with ENOSPC.
+TEST_F(AtomicFileTest, FullDiskNamesThePathAndTheSystemReason) {
+  const int descriptor = ::open("/dev/full", O_WRONLY | O_CLOEXEC);
+  if (descriptor < 0) GTEST_SKIP() << "no /dev/full";
+  const fs::path named = directory_ / "fields_000001.vtu";
+  try {
+    write_to_descriptor(descriptor, named, [](std::ostream& out) {
+      for (int i = 0; i < 100000; ++i)
+        out << "0123456789";
+    });
+    ADD_FAILURE() << "expected RunError";
+  } catch (const RunError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(named.string()), std::string::npos) << message;
+    EXPECT_NE(message.find("No space left on device"), std::string::npos) << message;
+  }
+  ::close(descriptor);
+}
+
+// A write the kernel refuses in the middle of a large file (here: beyond a file-size limit, in a
+// child process) is reported with its reason; it used to come out as "unknown I/O error", and
+// the previous complete file stays.
+TEST_F(AtomicFileTest, RefusedWriteInALargeFileNamesTheSystemReasonAndKeepsTheOldFile) {
+  const fs::path file = directory_ / "fields_000001.vtu";
+  write_file_atomically(file, std::string("old\n"));
+  int channel[2];
+  ASSERT_EQ(::pipe(channel), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::close(channel[0]);
+    std::signal(SIGXFSZ, SIG_IGN);  // the write then fails with EFBIG instead of killing
+    const rlimit limit{64 * 1024, 64 * 1024};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    std::string message = "no error";
+    try {
+      write_file_atomically(file, [](std::ostream& out) {
+        for (int i = 0; i < 100000; ++i)
+          out << "0123456789";
+      });
+    } catch (const RunError& error) {
+      message = error.what();
+    }
+    [[maybe_unused]] const ssize_t written = ::write(channel[1], message.data(), message.size());
+    ::_exit(0);
+  }
+  ::close(channel[1]);
+  std::string message;
+  char buffer[512];
+  for (ssize_t count; (count = ::read(channel[0], buffer, sizeof buffer)) > 0;)
+    message.append(buffer, static_cast<std::size_t>(count));
+  ::close(channel[0]);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+  EXPECT_NE(message.find("File too large"), std::string::npos) << message;
+  EXPECT_EQ(read_whole_file(file), "old\n");
+  EXPECT_EQ(file_count(), 1u);
 }
 
 }  // namespace

@@ -48,7 +48,10 @@ def decode_array(element, header_type, expected_tuples):
     require(byte_count == value_count * value_size,
             f"array {element.get('Name')!r}: {byte_count} bytes for {value_count} values")
     values = list(struct.unpack("<%d%s" % (value_count, VALUE_FORMATS[array_type]), payload))
-    return {"type": array_type, "components": components, "values": values}
+    # ComponentName<i> is how VTK's XML readers (and so ParaView) name component i.
+    names = [element.get(f"ComponentName{i}") for i in range(components)]
+    return {"type": array_type, "components": components, "component_names": names,
+            "values": values}
 
 
 def read_vtu(path):

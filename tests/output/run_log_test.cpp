@@ -104,6 +104,15 @@ TEST_F(RunLogTest, AReopenedLogIsAppendedTo) {
   EXPECT_TRUE(lines[1].ends_with("restart"));
 }
 
+TEST_F(RunLogTest, APlantedSymlinkIsNotWrittenThrough) {
+  const fs::path victim = directory_ / "victim.txt";
+  std::ofstream(victim) << "precious\n";
+  fs::create_symlink(victim, directory_ / "run.log");
+  std::ostringstream echo;
+  EXPECT_THROW(RunLog(directory_, true, echo), RunError);
+  EXPECT_EQ(read_lines(victim), std::vector<std::string>{"precious"});
+}
+
 TEST_F(RunLogTest, MissingDirectoryThrowsRunError) {
   std::ostringstream echo;
   EXPECT_THROW(RunLog(directory_ / "missing", false, echo), RunError);

@@ -258,6 +258,29 @@ TEST_F(VtuWriterTest, PythonReaderRecoversEveryValueOfA2dCloud) {
   expect_interleaved(result["Cells"]["types"], {types});
 }
 
+// ParaView lists a component by its ComponentName<i>; without them a tensor shows as 0..8 where
+// the README says to pick XX.
+TEST_F(VtuWriterTest, TensorAndVectorComponentsCarryTheNamesParaViewShows) {
+  const std::vector<double> x = {0.0, 1.0}, values = {1.0, 2.0};
+  const std::vector<PointField> fields = {
+      {"pressure", 1, {values.data()}},
+      {"velocity", 3, std::vector<const double*>(3, values.data())},
+      {"stress", 9, std::vector<const double*>(9, values.data())}};
+  const fs::path file = directory_ / "named.vtu";
+  write_vtu(file, PointPositions{1, 2, {x.data(), nullptr, nullptr}}, fields);
+  const Json result = run_reader("'" + file.string() + "'");
+  auto names = [&](const std::string& field) {
+    std::string joined;
+    for (const Json& name : result["PointData"][field]["component_names"].array())
+      joined += (joined.empty() ? "" : " ") +
+                (std::holds_alternative<std::string>(name.value) ? name.text() : "-");
+    return joined;
+  };
+  EXPECT_EQ(names("stress"), "XX XY XZ YX YY YZ ZX ZY ZZ");
+  EXPECT_EQ(names("velocity"), "X Y Z");
+  EXPECT_EQ(names("pressure"), "-");
+}
+
 // 1, 2 and 4 points give the three possible base64 tail lengths for the UInt8 types array
 // (8 + n bytes), so every padding case goes through the Python decoder.
 TEST_F(VtuWriterTest, EveryBase64PaddingCaseDecodes) {

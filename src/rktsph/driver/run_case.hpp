@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rktsph/case/case_description.hpp"
+#include "rktsph/output/output_folder.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
 namespace rktsph {
@@ -20,6 +21,10 @@ struct RunOptions {
   /// Further observers of the loop (validation metrics sampled while the run goes), added after
   /// the standard ones; they must outlive the call.
   std::vector<Observer*> observers;
+  /// What to do with the results of an earlier run in the folder (see OutputFolder).
+  ExistingResults existing_results = ExistingResults::Refuse;
+  /// Asked before every step; a non-empty answer interrupts the run there (SIGINT, SIGTERM).
+  StopCheck stop_check;
 };
 
 struct RunOutcome {
@@ -30,9 +35,12 @@ struct RunOutcome {
   double wall_seconds = 0.0;
 };
 
-/// Throws InputError for a bad case and RunError when the run cannot be set up; a diverging run
-/// returns status Diverged (its last good output kept). `inspect`, if given, sees the finished
-/// simulation (validation checks read fields from it).
+/// Takes the output folder (see OutputFolder: lock, stale temporaries, earlier results), then
+/// builds and runs the case. Throws InputError for a bad case or an unusable folder and RunError
+/// when the run cannot be set up or the folder is in use; once the folder is taken such an error
+/// also leaves summary.json (status "failed") and its text as the last line of run.log. A run
+/// that diverges, fails or is interrupted returns that status (its last good output kept).
+/// `inspect`, if given, sees the finished simulation (validation checks read fields from it).
 RunOutcome run_case(const CaseDescription& description, const std::filesystem::path& directory,
                     const RunOptions& options,
                     const std::function<void(const Simulation&)>& inspect = {});

@@ -1,13 +1,16 @@
 #include "rktsph/output/run_log.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <chrono>
 #include <ctime>
-#include <system_error>
 
 #include <fmt/format.h>
 
 #include "rktsph/core/error.hpp"
+#include "rktsph/output/atomic_file.hpp"
 
 namespace rktsph {
 
@@ -38,11 +41,6 @@ std::string_view echo_prefix(LogLevel level) {
   return "";
 }
 
-std::string describe_errno(int error_number) {
-  if (error_number == 0) return "unknown I/O error";
-  return std::error_code(error_number, std::generic_category()).message();
-}
-
 }  // namespace
 
 std::string utc_timestamp_now() {
@@ -59,33 +57,46 @@ std::string utc_timestamp_now() {
 
 RunLog::RunLog(const std::filesystem::path& output_directory, bool quiet, std::ostream& echo)
     : path_(output_directory / "run.log"), quiet_(quiet), echo_(echo) {
-  errno = 0;
-  file_.open(path_, std::ios::out | std::ios::app);
-  if (!file_) {
-    throw RunError(
-        fmt::format("cannot open log file '{}': {}", path_.string(), describe_errno(errno)));
+  // O_NOFOLLOW: a symlink planted as run.log must not turn the log into a write to another file.
+  descriptor_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0666);
+  if (descriptor_ < 0) {
+    const int open_error = errno;
+    throw RunError(fmt::format("cannot open log file '{}': {}", path_.string(),
+                               describe_system_error(open_error)));
   }
+}
+
+RunLog::~RunLog() {
+  ::close(descriptor_);
 }
 
 void RunLog::log(LogLevel level, std::string_view message) {
   const std::string timestamp = utc_timestamp_now();
   const std::string_view name = level_name(level);
-  const std::lock_guard lock(mutex_);
+  std::string text;
   std::size_t line_start = 0;
   while (true) {
     const std::size_t line_end = message.find('\n', line_start);
     const std::string_view line =
         message.substr(line_start, line_end == std::string_view::npos ? std::string_view::npos
                                                                       : line_end - line_start);
-    file_ << timestamp << ' ' << name << ' ' << line << '\n';
+    text += fmt::format("{} {} {}\n", timestamp, name, line);
     if (line_end == std::string_view::npos) break;
     line_start = line_end + 1;
   }
-  errno = 0;
-  file_.flush();
-  if (!file_) {
-    throw RunError(
-        fmt::format("cannot write log file '{}': {}", path_.string(), describe_errno(errno)));
+  const std::lock_guard lock(mutex_);
+  // One write per message (O_APPEND): the lines of a message stay together, and each message is
+  // with the kernel, not in a buffer of this process, when this returns, so a kill loses none.
+  std::size_t written = 0;
+  while (written < text.size()) {
+    const ssize_t count = ::write(descriptor_, text.data() + written, text.size() - written);
+    if (count < 0) {
+      const int write_error = errno;
+      if (write_error == EINTR) continue;
+      throw RunError(fmt::format("cannot write log file '{}': {}", path_.string(),
+                                 describe_system_error(write_error)));
+    }
+    written += static_cast<std::size_t>(count);
   }
   if (!quiet_) echo_ << echo_prefix(level) << message << '\n' << std::flush;
 }

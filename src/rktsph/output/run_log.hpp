@@ -6,7 +6,6 @@
 #pragma once
 
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <mutex>
 #include <ostream>
@@ -19,10 +18,11 @@ enum class LogLevel { kInfo, kWarning, kError };
 
 class RunLog {
  public:
-  /// Opens (creating if needed) `output_directory`/run.log for appending; the directory must
-  /// exist. Unless `quiet`, each message is also written to `echo` (normally std::cerr) without
-  /// the timestamp. Throws RunError if the file cannot be opened.
+  /// Opens (creating if needed) `output_directory`/run.log for appending, never through a
+  /// symlink; the directory must exist. Unless `quiet`, each message is also written to `echo`
+  /// (normally std::cerr) without the timestamp. Throws RunError if the file cannot be opened.
   RunLog(const std::filesystem::path& output_directory, bool quiet, std::ostream& echo = std::cerr);
+  ~RunLog();
   RunLog(const RunLog&) = delete;
   RunLog& operator=(const RunLog&) = delete;
 
@@ -37,7 +37,7 @@ class RunLog {
 
  private:
   std::filesystem::path path_;
-  std::ofstream file_;
+  int descriptor_ = -1;
   bool quiet_;
   std::ostream& echo_;
   std::mutex mutex_;

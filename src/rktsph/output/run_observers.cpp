@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "rktsph/core/build_info.hpp"
 #include "rktsph/output/atomic_file.hpp"
 #include "rktsph/output/json_writer.hpp"
 #include "rktsph/output/vtu_writer.hpp"
@@ -18,6 +19,13 @@ namespace {
 // A time counts as reached when within a millionth of a step of it (round-off of t += dt).
 bool reached(double time, double target, double dt) {
   return time >= target - 1e-6 * dt;
+}
+
+// The fields of summary.json that say which program wrote it; shared by every kind of summary.
+void set_program(JsonValue& summary) {
+  summary.set("version", RKTSPH_VERSION);
+  summary.set("commit", build_commit());
+  summary.set("build_type", build_type());
 }
 
 const std::vector<std::string>& dry_output_fields() {
@@ -35,10 +43,21 @@ const std::vector<std::string>& saturated_output_fields() {
 
 }  // namespace
 
+OutputSchedule::OutputSchedule(double interval)
+    : interval_(interval),
+      next_time_(interval > 0.0 ? interval : std::numeric_limits<double>::infinity()) {}
+
+bool OutputSchedule::due(double time, double time_step) {
+  if (!reached(time, next_time_, time_step)) return false;
+  while (reached(time, next_time_, time_step))
+    next_time_ += interval_;
+  return true;
+}
+
 FieldSeriesWriter::FieldSeriesWriter(const Simulation& simulation, std::filesystem::path directory)
     : directory_(std::move(directory)),
       collection_(directory_ / "series.pvd"),
-      interval_(simulation.description().output.interval) {
+      schedule_(simulation.description().output.interval) {
   const OutputSpec& output = simulation.description().output;
   const bool saturated = simulation.model().pore_pressure_field() >= 0;
   const auto& available = saturated ? saturated_output_fields() : dry_output_fields();
@@ -54,7 +73,11 @@ FieldSeriesWriter::FieldSeriesWriter(const Simulation& simulation, std::filesyst
                        allowed);
     }
   }
-  std::filesystem::create_directories(directory_ / "fields");
+  std::error_code error;
+  std::filesystem::create_directories(directory_ / "fields", error);
+  if (error)
+    throw RunError(fmt::format("cannot create the folder '{}': {}",
+                               (directory_ / "fields").string(), error.message()));
 }
 
 void FieldSeriesWriter::write(const Simulation& simulation) {
@@ -125,26 +148,26 @@ void FieldSeriesWriter::write(const Simulation& simulation) {
 
 void FieldSeriesWriter::on_start(const Simulation& simulation) {
   write(simulation);
-  next_time_ = interval_ > 0.0 ? interval_ : std::numeric_limits<double>::infinity();
 }
 
 void FieldSeriesWriter::after_step(const Simulation& simulation) {
-  if (!reached(simulation.state().time, next_time_, simulation.time_step())) return;
-  write(simulation);
-  while (reached(simulation.state().time, next_time_, simulation.time_step()))
-    next_time_ += interval_;
+  if (schedule_.due(simulation.state().time, simulation.time_step())) write(simulation);
 }
 
 void FieldSeriesWriter::on_finish(const Simulation& simulation, RunStatus status,
                                   const std::string&) {
-  if (status == RunStatus::Diverged) return;  // keep the last good files
+  // After a divergence or a failure the state may be bad or the disk full: keep the last good
+  // files. An interrupted run ends on a whole step, which is worth writing.
+  if (status != RunStatus::Completed && status != RunStatus::Interrupted) return;
   if (simulation.state().time != last_written_time_) write(simulation);
 }
 
 ProbeRecorder::ProbeRecorder(const Simulation& simulation, std::filesystem::path path)
     : path_(std::move(path)),
       table_({"time"}),
-      interval_(simulation.description().output.probe_interval) {
+      every_step_(simulation.description().output.probe_interval <= 0.0),
+      records_(simulation.description().output.probe_interval),
+      field_outputs_(simulation.description().output.interval) {
   std::vector<std::string> names = {"time"};
   for (const ProbeSpec& probe : simulation.description().probes) {
     const auto group = simulation.groups().find(probe.group);
@@ -200,17 +223,16 @@ void ProbeRecorder::record(const Simulation& simulation) {
 
 void ProbeRecorder::on_start(const Simulation& simulation) {
   record(simulation);
-  next_time_ = interval_;
   table_.flush(path_);
 }
 
 void ProbeRecorder::after_step(const Simulation& simulation) {
-  if (interval_ <= 0.0 || reached(simulation.state().time, next_time_, simulation.time_step())) {
+  if (every_step_ || records_.due(simulation.state().time, simulation.time_step()))
     record(simulation);
-    while (interval_ > 0.0 && reached(simulation.state().time, next_time_, simulation.time_step()))
-      next_time_ += interval_;
-  }
-  if (simulation.wall_seconds() - last_flush_wall_ > 2.0) {
+  // With every field output, so the histories on disk always reach the last VTU (a killed run
+  // loses no more than it loses of the fields), and every 2 s for runs with sparse field output.
+  const bool field_output = field_outputs_.due(simulation.state().time, simulation.time_step());
+  if (field_output || simulation.wall_seconds() - last_flush_wall_ > 2.0) {
     table_.flush(path_);
     last_flush_wall_ = simulation.wall_seconds();
   }
@@ -240,7 +262,7 @@ void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,
   summary.set("stress_points", simulation.nodes().stress_points.size());
   summary.set("boundary_nodes", simulation.step().operators().boundary_nodes.size());
   summary.set("threads", omp_get_max_threads());
-  summary.set("version", RKTSPH_VERSION);
+  set_program(summary);
   if (const PressureProjection* projection = simulation.pressure_projection()) {
     const SolverStatistics& stats = projection->statistics();
     JsonValue solver = JsonValue::object();
@@ -257,6 +279,21 @@ void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,
     summary.set("pressure_solver", std::move(solver));
   }
   write_file_atomically(path_, summary.pretty() + "\n");
+}
+
+void write_setup_failure_summary(const std::filesystem::path& path,
+                                 const CaseDescription& description, const std::string& message) {
+  JsonValue summary = JsonValue::object();
+  summary.set("case", description.name);
+  summary.set("status", run_status_name(RunStatus::Failed));
+  summary.set("message", message);
+  summary.set("steps", 0);
+  summary.set("simulated_time", 0.0);
+  summary.set("end_time", description.time.end);
+  summary.set("wall_seconds", 0.0);
+  summary.set("threads", omp_get_max_threads());
+  set_program(summary);
+  write_file_atomically(path, summary.pretty() + "\n");
 }
 
 }  // namespace rktsph

@@ -16,9 +16,23 @@
 
 namespace rktsph {
 
-/// Writes fields/fields_NNNNNN.vtu at t = 0, every `output.interval` and at the end, and keeps
-/// series.pvd listing them. After a divergence nothing more is written: the last files are the
-/// last good state.
+/// When an output every `interval` of simulated time is due: at the first step whose time reaches
+/// the next multiple k * interval (within 1e-6 of a step), after which the next due time is the
+/// first multiple beyond that step's time (so one output per step at most). Interval 0: never.
+class OutputSchedule {
+ public:
+  explicit OutputSchedule(double interval);
+  /// True if an output is due at `time` (and moves on to the next one).
+  bool due(double time, double time_step);
+
+ private:
+  double interval_;
+  double next_time_;
+};
+
+/// Writes fields/fields_NNNNNN.vtu at t = 0, when OutputSchedule(output.interval) says, and at
+/// the end, and keeps series.pvd listing them. After a divergence or a failure nothing more is
+/// written: the last files are the last good state. An interrupted run writes its last step.
 class FieldSeriesWriter final : public Observer {
  public:
   FieldSeriesWriter(const Simulation& simulation, std::filesystem::path directory);
@@ -33,14 +47,13 @@ class FieldSeriesWriter final : public Observer {
   std::filesystem::path directory_;
   PvdCollection collection_;
   std::vector<std::string> selection_;
-  double interval_;
-  double next_time_ = 0.0;
+  OutputSchedule schedule_;
   double last_written_time_ = -1.0;
 };
 
 /// Records probes (group reductions of named quantities) into probes.csv: one column per probe
-/// and field, named "<probe>.<field>". The file is rewritten whole every 2 s of wall time and at
-/// the end.
+/// and field, named "<probe>.<field>". The file is rewritten whole with every field output (the
+/// same schedule as FieldSeriesWriter), every 2 s of wall time and at the end.
 class ProbeRecorder final : public Observer {
  public:
   /// Resolves the probes of the case; InputError at the probe for unknown groups or fields.
@@ -62,12 +75,13 @@ class ProbeRecorder final : public Observer {
   std::vector<Column> columns_;
   ProbeCsv table_;
   std::vector<double> row_;
-  double interval_;
-  double next_time_ = 0.0;
+  bool every_step_;  // probe_interval 0
+  OutputSchedule records_;
+  OutputSchedule field_outputs_;
   double last_flush_wall_ = 0.0;
 };
 
-/// Writes summary.json when the run ends (also when it diverged).
+/// Writes summary.json when the run ends, however it ends (status, message, counts, program).
 class SummaryWriter final : public Observer {
  public:
   explicit SummaryWriter(std::filesystem::path path) : path_(std::move(path)) {}
@@ -77,6 +91,11 @@ class SummaryWriter final : public Observer {
  private:
   std::filesystem::path path_;
 };
+
+/// summary.json for a run that failed before its loop started (a setup or input error found after
+/// the output folder was taken): status "failed", the error text as message, 0 steps.
+void write_setup_failure_summary(const std::filesystem::path& path,
+                                 const CaseDescription& description, const std::string& message);
 
 /// Progress bar on a terminal, periodic lines otherwise, nothing when quiet.
 class ProgressObserver final : public Observer {

@@ -1,5 +1,6 @@
 #include "rktsph/output/vtu_writer.hpp"
 
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <stdexcept>
@@ -46,10 +47,26 @@ void check_input(const PointPositions& positions, std::span<const PointField> fi
 // The binary layout of an uncompressed inline array is one base64 stream holding the byte count
 // of the data (UInt64, as declared by header_type) followed by the data itself.
 void open_data_array(std::ostream& out, std::string_view type, std::string_view name,
-                     int components) {
+                     int components, std::span<const char* const> component_names = {}) {
   out << "        <DataArray type=\"" << type << "\"";
   if (!name.empty()) out << " Name=\"" << escape_xml_attribute(name) << "\"";
-  out << " NumberOfComponents=\"" << components << "\" format=\"binary\">\n          ";
+  out << " NumberOfComponents=\"" << components << "\"";
+  // VTK's XML readers take ComponentName<i> as the name of component i; ParaView lists those
+  // names (XX, XY, ...) instead of the indices 0-8.
+  for (std::size_t i = 0; i < component_names.size(); ++i)
+    out << " ComponentName" << i << "=\"" << component_names[i] << "\"";
+  out << " format=\"binary\">\n          ";
+}
+
+// Names for the documented component orders of PointField: x y z for a vector, row order for a
+// 3 x 3 tensor. Other counts stay unnamed (ParaView shows indices).
+std::span<const char* const> component_names(int components) {
+  static constexpr std::array<const char*, 3> kVector = {"X", "Y", "Z"};
+  static constexpr std::array<const char*, 9> kTensor = {"XX", "XY", "XZ", "YX", "YY",
+                                                         "YZ", "ZX", "ZY", "ZZ"};
+  if (components == 3) return kVector;
+  if (components == 9) return kTensor;
+  return {};
 }
 
 void close_data_array(std::ostream& out) {
@@ -57,7 +74,7 @@ void close_data_array(std::ostream& out) {
 }
 
 void write_point_field(std::ostream& out, std::size_t count, const PointField& field) {
-  open_data_array(out, "Float64", field.name, field.components);
+  open_data_array(out, "Float64", field.name, field.components, component_names(field.components));
   Base64Encoder encoder(out);
   encoder.put_little_endian(count * static_cast<std::size_t>(field.components) * sizeof(double));
   for (std::size_t point = 0; point < count; ++point) {

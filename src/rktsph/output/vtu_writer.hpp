@@ -19,7 +19,8 @@ namespace rktsph {
 
 /// One point-data array in structure-of-arrays form: component_data[c][i] is component c of
 /// point i. The file stores it interleaved per point, as VTK expects. For a 9-component tensor
-/// pass the components in the order xx xy xz yx yy yz zx zy zz.
+/// pass the components in the order xx xy xz yx yy yz zx zy zz; the file names them XX, XY, ...
+/// ZZ (and the components of a 3-vector X, Y, Z), which ParaView shows.
 struct PointField {
   std::string name;
   int components = 1;

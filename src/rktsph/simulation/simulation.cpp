@@ -19,8 +19,8 @@ const char* run_status_name(RunStatus status) {
       return "diverged";
     case RunStatus::Failed:
       return "failed";
-    case RunStatus::Stopped:
-      return "stopped";
+    case RunStatus::Interrupted:
+      return "interrupted";
   }
   return "unknown";
 }
@@ -193,16 +193,53 @@ std::string Simulation::find_divergence(const State& state) const {
   return {};
 }
 
+bool Simulation::notify_observers(const std::function<void(Observer&)>& notify) {
+  for (Observer* observer : observers_) {
+    try {
+      notify(*observer);
+    } catch (const std::exception& error) {  // e.g. a result file that cannot be written
+      message_ = fmt::format("failed at step {} (t = {:.6g} s): {}", state_.step, state_.time,
+                             error.what());
+      return false;
+    }
+  }
+  return true;
+}
+
+RunStatus Simulation::finish_observers(RunStatus status) {
+  for (Observer* observer : observers_) {
+    try {
+      observer->on_finish(*this, status, message_);
+    } catch (const std::exception& error) {
+      if (status == RunStatus::Completed || status == RunStatus::Interrupted) {
+        status = RunStatus::Failed;
+        message_ = fmt::format("failed at the end (step {}, t = {:.6g} s): {}", state_.step,
+                               state_.time, error.what());
+      } else {
+        message_ += fmt::format("; then: {}", error.what());
+      }
+    }
+  }
+  return status;
+}
+
 RunStatus Simulation::run() {
   const auto start = std::chrono::steady_clock::now();
-  for (Observer* observer : observers_)
-    observer->on_start(*this);
   RunStatus status = RunStatus::Completed;
+  if (!notify_observers([this](Observer& observer) { observer.on_start(*this); }))
+    status = RunStatus::Failed;
   // Every step is checked; on divergence the observers keep the last good output on disk.
-  for (long s = 0; s < total_steps_; ++s) {
+  for (long s = 0; s < total_steps_ && status == RunStatus::Completed; ++s) {
+    // Between steps, so an interrupted run ends on a whole step its observers can record.
+    if (const std::string reason = stop_check_ ? stop_check_() : std::string(); !reason.empty()) {
+      message_ = fmt::format("interrupted at step {} (t = {:.6g} s): {}", state_.step, state_.time,
+                             reason);
+      status = RunStatus::Interrupted;
+      break;
+    }
     try {
       step_->advance(state_, time_step_);
-    } catch (const RunError& error) {  // e.g. a pressure solve that does not converge
+    } catch (const std::exception& error) {  // e.g. a pressure solve that does not converge
       message_ = fmt::format("failed at step {} (t = {:.6g} s): {}", state_.step + 1,
                              state_.time + time_step_, error.what());
       status = RunStatus::Failed;
@@ -216,13 +253,11 @@ RunStatus Simulation::run() {
       break;
     }
     wall_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    for (Observer* observer : observers_)
-      observer->after_step(*this);
+    if (!notify_observers([this](Observer& observer) { observer.after_step(*this); }))
+      status = RunStatus::Failed;
   }
   wall_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  for (Observer* observer : observers_)
-    observer->on_finish(*this, status, message_);
-  return status;
+  return finish_observers(status);
 }
 
 }  // namespace rktsph

@@ -2,6 +2,7 @@
 // operators and the state; and the time loop, which observers watch (docs/theory.md §2.3).
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -19,8 +20,15 @@ namespace rktsph {
 
 class Simulation;
 
-enum class RunStatus { Completed, Diverged, Failed, Stopped };
+/// How a run ended: reached the end time; a value not finite or beyond its bound; a step or an
+/// observer (an output write, say) failed; stopped on request (SIGINT, SIGTERM) between steps.
+enum class RunStatus { Completed, Diverged, Failed, Interrupted };
+/// "completed", "diverged", "failed", "interrupted" (the status in summary.json).
 const char* run_status_name(RunStatus status);
+
+/// Asked before every step whether the run should stop there: a non-empty answer (the reason,
+/// e.g. "SIGINT received") ends it with status Interrupted. It must not throw.
+using StopCheck = std::function<std::string()>;
 
 /// Something that watches the loop: output, probes, progress, validation metrics.
 class Observer {
@@ -42,9 +50,14 @@ class Simulation {
   explicit Simulation(CaseDescription description);
 
   void add_observer(Observer& observer) { observers_.push_back(&observer); }
+  void set_stop_check(StopCheck check) { stop_check_ = std::move(check); }
   /// Runs to the end time. A value that is not finite or beyond the model's divergence bound stops
   /// the run with status Diverged and a message naming the step, time, field, node and position;
   /// the observers are not shown that state, so the last output written is the last good one.
+  /// An exception from an observer (an output that cannot be written) ends the run with status
+  /// Failed and its text; the stop check ends it with status Interrupted. Every way out calls
+  /// every observer's on_finish (one that throws there turns a completed or interrupted run into
+  /// a failed one), so the summary always records how the run ended.
   RunStatus run();
   const std::string& message() const { return message_; }
 
@@ -69,6 +82,10 @@ class Simulation {
   /// Describes the first value that is not finite or beyond the model's divergence bound (field,
   /// node, position), or returns an empty string.
   std::string find_divergence(const State& state) const;
+  /// Calls `notify` for every observer; false (status Failed, message set) if one threw.
+  bool notify_observers(const std::function<void(Observer&)>& notify);
+  /// on_finish for every observer, even after one threw; returns the final status.
+  RunStatus finish_observers(RunStatus status);
 
   CaseDescription description_;
   NodeSets nodes_;
@@ -83,6 +100,7 @@ class Simulation {
   double wall_seconds_ = 0.0;
   std::string message_;
   std::vector<Observer*> observers_;
+  StopCheck stop_check_;
 };
 
 }  // namespace rktsph

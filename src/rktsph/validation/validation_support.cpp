@@ -121,6 +121,8 @@ std::filesystem::path run_for_validation(const ValidationContext& context,
   RunOptions options;
   options.quiet = true;
   options.observers = observers;
+  // The validation owns its run folders: a new validation replaces the last one's runs.
+  options.existing_results = ExistingResults::Overwrite;
   const RunOutcome outcome = run_case(description, directory, options, inspect);
   if (outcome.status != RunStatus::Completed)
     throw RunError(fmt::format("run '{}' of {} did not complete: {}", label, description.name,
