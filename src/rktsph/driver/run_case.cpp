@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <optional>
+
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/output/atomic_file.hpp"
+#include "rktsph/output/checkpoint_writer.hpp"
 #include "rktsph/output/run_log.hpp"
 #include "rktsph/output/run_observers.hpp"
 
@@ -13,6 +16,11 @@ namespace rktsph {
 RunOutcome run_case(const CaseDescription& description, const std::filesystem::path& directory,
                     const RunOptions& options,
                     const std::function<void(const Simulation&)>& inspect) {
+  // The hash covers the resolved case, --set overrides included, so a restart must give both.
+  const std::string resolved_case = write_case_yaml(description);
+  const std::uint64_t case_hash = fnv1a_64(resolved_case);
+  std::optional<CheckpointFile> checkpoint;
+  if (options.restart) checkpoint = read_checkpoint(directory, case_hash);
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error)
@@ -21,7 +29,9 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
   RunLog log(directory, true);
   log.info(fmt::format("rktsph {} case '{}' from {}", RKTSPH_VERSION, description.name,
                        description.file));
-  write_file_atomically(directory / "case.yaml", write_case_yaml(description));
+  write_file_atomically(directory / "case.yaml", resolved_case);
+  // A checkpoint belongs with the results beside it: a new run must not leave an old one there.
+  if (!options.restart) std::filesystem::remove(directory / kCheckpointFileName, error);
 
   Simulation simulation(description);
   log.info(
@@ -37,6 +47,24 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
   simulation.add_observer(series);
   simulation.add_observer(probes);
   simulation.add_observer(summary);
+  std::unique_ptr<CheckpointWriter> checkpoints;
+  if (description.output.checkpoint_interval > 0.0 || checkpoint) {
+    checkpoints = std::make_unique<CheckpointWriter>(
+        directory / kCheckpointFileName, description.output.checkpoint_interval, case_hash,
+        std::vector<CheckpointPart>{
+            {"simulation", &simulation}, {"field_series", &series}, {"probes", &probes}});
+    simulation.add_observer(*checkpoints);  // after the observers whose state it saves
+  }
+  if (checkpoint) {
+    restore_checkpoint_parts(*checkpoint, checkpoints->parts());
+    if (checkpoint->rktsph_version != RKTSPH_VERSION)
+      log.warning(
+          fmt::format("the checkpoint was written by rktsph {}; results continued by {} "
+                      "may differ in the last bits from an uninterrupted run",
+                      checkpoint->rktsph_version, RKTSPH_VERSION));
+    log.info(fmt::format("continuing from {} at step {}, t = {:.6g} s", checkpoint->path.string(),
+                         simulation.state().step, simulation.state().time));
+  }
   std::unique_ptr<ProgressObserver> progress;
   if (options.progress_stream) {
     progress = std::make_unique<ProgressObserver>(description.time.end, *options.progress_stream,

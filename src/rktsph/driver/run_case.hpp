@@ -20,6 +20,10 @@ struct RunOptions {
   /// Further observers of the loop (validation metrics sampled while the run goes), added after
   /// the standard ones; they must outlive the call.
   std::vector<Observer*> observers;
+  /// Continue the run in `directory` from its checkpoint.bin instead of starting at t = 0
+  /// (`rktsph run --restart`); refused with an InputError, before anything is written, for a
+  /// missing or damaged checkpoint, another format version or another case.
+  bool restart = false;
 };
 
 struct RunOutcome {

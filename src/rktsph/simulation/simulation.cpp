@@ -195,11 +195,15 @@ std::string Simulation::find_divergence(const State& state) const {
 
 RunStatus Simulation::run() {
   const auto start = std::chrono::steady_clock::now();
-  for (Observer* observer : observers_)
-    observer->on_start(*this);
+  for (Observer* observer : observers_) {
+    if (resumed_)
+      observer->on_resume(*this);
+    else
+      observer->on_start(*this);
+  }
   RunStatus status = RunStatus::Completed;
   // Every step is checked; on divergence the observers keep the last good output on disk.
-  for (long s = 0; s < total_steps_; ++s) {
+  for (long s = state_.step; s < total_steps_; ++s) {
     try {
       step_->advance(state_, time_step_);
     } catch (const RunError& error) {  // e.g. a pressure solve that does not converge
@@ -223,6 +227,29 @@ RunStatus Simulation::run() {
   for (Observer* observer : observers_)
     observer->on_finish(*this, status, message_);
   return status;
+}
+
+void Simulation::save_checkpoint(CheckpointOut& out) const {
+  out.put_f64(state_.time);
+  out.put_i64(state_.step);
+  out.put_fields(state_.fields);
+  out.put_fields(state_.internal);
+  out.put_fields(state_.displacement);
+  out.put_fields(state_.strain);
+  if (projection_) projection_->save_checkpoint(out);
+}
+
+void Simulation::restore_checkpoint(CheckpointIn& in) {
+  state_.time = in.get_f64();
+  state_.step = in.get_i64();
+  if (state_.step < 0 || state_.step > total_steps_)
+    in.fail(fmt::format("step {} outside this run's 0 to {}", state_.step, total_steps_));
+  in.get_fields_into(state_.fields);
+  in.get_fields_into(state_.internal);
+  in.get_fields_into(state_.displacement);
+  in.get_fields_into(state_.strain);
+  if (projection_) projection_->restore_checkpoint(in);
+  resumed_ = true;
 }
 
 }  // namespace rktsph
