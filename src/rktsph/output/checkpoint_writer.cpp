@@ -27,6 +27,8 @@ void CheckpointWriter::on_start(const Simulation&) {
 }
 
 void CheckpointWriter::after_step(const Simulation& simulation) {
+  // Interval 0 only when restoring a checkpoint made with another interval: nothing to write.
+  if (interval_ <= 0.0) return;
   const double time = simulation.state().time;
   const double dt = simulation.time_step();
   if (!reached(time, next_time_, dt)) return;
