@@ -126,14 +126,33 @@ int interrupted_exit_status() {
   return 128 + InterruptHandler::received_signal();
 }
 
+// The folder a run writes into: the restarted run's own, or -o, or results/<case name>.
+std::filesystem::path run_directory_for(const CaseDescription& description,
+                                        const std::string& output, const std::string& restart) {
+  if (!restart.empty()) {
+    const bool same = output.empty() || std::filesystem::weakly_canonical(output) ==
+                                            std::filesystem::weakly_canonical(restart);
+    if (!same)
+      throw InputError({}, "-o", output, "a restarted run continues in its own folder",
+                       fmt::format("no -o with --restart, or -o {}", restart));
+    return restart;
+  }
+  return output.empty() ? std::filesystem::path("results") / description.name
+                        : std::filesystem::path(output);
+}
+
 int command_run(const std::string& case_path, const std::string& output, int threads,
-                const std::vector<std::string>& sets, bool quiet, bool overwrite) {
+                const std::vector<std::string>& sets, bool quiet, bool overwrite,
+                const std::string& restart) {
   if (threads > 0) omp_set_num_threads(threads);
   const CaseDescription description = read_case_file(case_path, parse_overrides(sets));
-  const std::filesystem::path directory = output.empty()
-                                              ? std::filesystem::path("results") / description.name
-                                              : std::filesystem::path(output);
+  if (overwrite && !restart.empty())
+    throw InputError({}, "--overwrite", "--restart " + restart,
+                     "a restarted run continues its own results",
+                     "either --overwrite or --restart");
+  const std::filesystem::path directory = run_directory_for(description, output, restart);
   RunOptions options;
+  options.restart = !restart.empty();
   options.quiet = quiet;
   options.progress_stream = &std::cerr;
   options.progress_is_terminal = isatty(STDERR_FILENO) != 0;
@@ -272,6 +291,10 @@ int main(int argc, char** argv) {
   run->add_flag("--overwrite", overwrite,
                 "Replace the results of an earlier run in the output folder (only rktsph's own "
                 "files are removed)");
+  std::string restart;
+  run->add_option("--restart", restart,
+                  "Continue the run in this folder from its last checkpoint (the case and --set "
+                  "overrides must be those of that run)");
 
   CLI::App* check = app.add_subcommand("check", "Validate a case file without running it");
   check->add_option("case", case_path, "Case file (YAML)")->required();
@@ -318,7 +341,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*run) return command_run(case_path, output, threads, sets, quiet, overwrite);
+    if (*run) return command_run(case_path, output, threads, sets, quiet, overwrite, restart);
     if (*check) return command_check(case_path, sets);
     if (*validate) return command_validate(names, all, quick, json, output, report, threads);
     if (*plot)

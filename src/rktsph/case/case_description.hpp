@@ -160,7 +160,8 @@ struct TimeSpec {
 struct OutputSpec {
   double interval = 0.0;        ///< field (VTU) output every `interval` s; 0 = first and last only
   double probe_interval = 0.0;  ///< probes every `probe_interval` s; 0 = every step
-  std::vector<std::string> fields;  ///< empty = all fields of the model
+  double checkpoint_interval = 0.0;  ///< checkpoint.bin every `checkpoint_interval` s; 0 = none
+  std::vector<std::string> fields;   ///< empty = all fields of the model
   SourceLocation where;
 };
 

@@ -524,13 +524,16 @@ void CaseReader::read_time(const YamlNode& node) {
 
 void CaseReader::read_output(const YamlNode& node) {
   const YamlMap output(node);
-  output.allow_only({"interval", "probe_interval", "fields"});
+  output.allow_only({"interval", "probe_interval", "checkpoint_interval", "fields"});
   out_.output.where = output.where();
   if (const YamlNode* interval = output.find("interval")) {
     out_.output.interval = to_number(*interval, NumberRange::non_negative());
   }
   if (const YamlNode* interval = output.find("probe_interval")) {
     out_.output.probe_interval = to_number(*interval, NumberRange::non_negative());
+  }
+  if (const YamlNode* interval = output.find("checkpoint_interval")) {
+    out_.output.checkpoint_interval = to_number(*interval, NumberRange::non_negative());
   }
   if (const YamlNode* fields = output.find("fields")) {
     for (const YamlNode& field : to_sequence(*fields)) {
@@ -969,6 +972,9 @@ void emit_output_and_probes(YAML::Emitter& out, const CaseDescription& descripti
   out << YAML::Key << "output" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "interval" << YAML::Value << number(output.interval);
   out << YAML::Key << "probe_interval" << YAML::Value << number(output.probe_interval);
+  if (output.checkpoint_interval > 0.0) {  // only when on: older resolved cases keep their text
+    out << YAML::Key << "checkpoint_interval" << YAML::Value << number(output.checkpoint_interval);
+  }
   if (!output.fields.empty()) {
     out << YAML::Key << "fields" << YAML::Value << YAML::Flow << output.fields;
   }

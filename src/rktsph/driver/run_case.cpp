@@ -4,10 +4,12 @@
 #include <omp.h>
 
 #include <memory>
+#include <optional>
 
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/core/build_info.hpp"
 #include "rktsph/output/atomic_file.hpp"
+#include "rktsph/output/checkpoint_writer.hpp"
 #include "rktsph/output/output_folder.hpp"
 #include "rktsph/output/run_log.hpp"
 #include "rktsph/output/run_observers.hpp"
@@ -39,11 +41,23 @@ void log_end(RunLog& log, const RunOutcome& outcome, double simulated_time) {
 RunOutcome run_case(const CaseDescription& description, const std::filesystem::path& directory,
                     const RunOptions& options,
                     const std::function<void(const Simulation&)>& inspect) {
-  const OutputFolder folder(directory, options.existing_results);
+  // The hash covers the resolved case, --set overrides included, so a restart must give both.
+  // The checkpoint is read (and refused) before the folder is touched.
+  const std::string resolved_case = write_case_yaml(description);
+  const std::uint64_t case_hash = fnv1a_64(resolved_case);
+  std::optional<CheckpointFile> checkpoint;
+  if (options.restart) checkpoint = read_checkpoint(directory, case_hash);
+  const OutputFolder folder(directory,
+                            options.restart ? ExistingResults::Continue : options.existing_results);
   RunLog log(directory, true);
   log.info(fmt::format("rktsph {} case '{}' from {}", version_text(), description.name,
                        description.file));
   log_folder(log, folder);
+  if (!options.restart) {
+    // A checkpoint belongs with the results beside it: a new run must not leave an old one there.
+    std::error_code ignored;
+    std::filesystem::remove(directory / kCheckpointFileName, ignored);
+  }
 
   // From here on the folder is ours: an error before the loop still leaves a summary and a last
   // line in run.log, then goes on to the caller (exit status 2 for input, 3 otherwise).
@@ -51,7 +65,7 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
   std::unique_ptr<FieldSeriesWriter> series;
   std::unique_ptr<ProbeRecorder> probes;
   try {
-    write_file_atomically(directory / "case.yaml", write_case_yaml(description));
+    write_file_atomically(directory / "case.yaml", resolved_case);
     simulation = std::make_unique<Simulation>(description);
     log.info(
         fmt::format("{} SPH nodes, {} stress points, {} boundary nodes; dt = {:.6g} s, {} steps, "
@@ -75,6 +89,25 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
   simulation->add_observer(*series);
   simulation->add_observer(*probes);
   simulation->add_observer(summary);
+  std::unique_ptr<CheckpointWriter> checkpoints;
+  if (description.output.checkpoint_interval > 0.0 || checkpoint) {
+    checkpoints = std::make_unique<CheckpointWriter>(
+        directory / kCheckpointFileName, description.output.checkpoint_interval, case_hash,
+        std::vector<CheckpointPart>{{"simulation", simulation.get()},
+                                    {"field_series", series.get()},
+                                    {"probes", probes.get()}});
+    simulation->add_observer(*checkpoints);  // after the observers whose state it saves
+  }
+  if (checkpoint) {
+    restore_checkpoint_parts(*checkpoint, checkpoints->parts());
+    if (checkpoint->rktsph_version != RKTSPH_VERSION)
+      log.warning(
+          fmt::format("the checkpoint was written by rktsph {}; results continued by {} "
+                      "may differ in the last bits from an uninterrupted run",
+                      checkpoint->rktsph_version, RKTSPH_VERSION));
+    log.info(fmt::format("continuing from {} at step {}, t = {:.6g} s", checkpoint->path.string(),
+                         simulation->state().step, simulation->state().time));
+  }
   std::unique_ptr<ProgressObserver> progress;
   if (options.progress_stream) {
     progress = std::make_unique<ProgressObserver>(description.time.end, *options.progress_stream,

@@ -25,6 +25,10 @@ struct RunOptions {
   ExistingResults existing_results = ExistingResults::Refuse;
   /// Asked before every step; a non-empty answer interrupts the run there (SIGINT, SIGTERM).
   StopCheck stop_check;
+  /// Continue the run in `directory` from its checkpoint.bin instead of starting at t = 0
+  /// (`rktsph run --restart`); refused with an InputError, before anything is written, for a
+  /// missing or damaged checkpoint, another format version or another case.
+  bool restart = false;
 };
 
 struct RunOutcome {

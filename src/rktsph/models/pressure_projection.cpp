@@ -265,4 +265,26 @@ void PressureProjection::project(State& state, double time, double dt) {
   statistics_.projection_seconds += seconds_since(start);
 }
 
+void PressureProjection::save_checkpoint(CheckpointOut& out) const {
+  out.put_u32(has_older_ ? 1 : 0);
+  out.put_doubles(older_.data(), static_cast<std::size_t>(older_.size()));
+  out.put_i64(statistics_.solves);
+  out.put_i64(statistics_.total_iterations);
+  out.put_i64(statistics_.max_iterations);
+  out.put_f64(statistics_.last_residual);
+  out.put_f64(statistics_.solve_seconds);
+  out.put_f64(statistics_.projection_seconds);
+}
+
+void PressureProjection::restore_checkpoint(CheckpointIn& in) {
+  has_older_ = in.get_u32() != 0;
+  in.get_doubles_into(older_.data(), static_cast<std::size_t>(older_.size()));
+  statistics_.solves = in.get_i64();
+  statistics_.total_iterations = in.get_i64();
+  statistics_.max_iterations = in.get_i64();
+  statistics_.last_residual = in.get_f64();
+  statistics_.solve_seconds = in.get_f64();
+  statistics_.projection_seconds = in.get_f64();
+}
+
 }  // namespace rktsph

@@ -24,6 +24,7 @@
 #include "rktsph/case/case_description.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/models/saturated_vpw.hpp"
+#include "rktsph/simulation/checkpoint.hpp"
 #include "rktsph/sph/laplacian.hpp"
 #include "rktsph/time/rk_taylor_step.hpp"
 
@@ -49,6 +50,10 @@ class PressureProjection final : public StepProjection {
 
   void project(State& state, double time, double dt) override;
   const SolverStatistics& statistics() const { return statistics_; }
+  /// The values a restarted run needs to solve as this one would: the previous pressure of the
+  /// warm start (which changes the iterates, so the last bits of the result) and the statistics.
+  void save_checkpoint(CheckpointOut& out) const;
+  void restore_checkpoint(CheckpointIn& in);
   const LaplacianMatrix& laplacian() const { return laplacian_; }
   /// The assembled system matrix (Dirichlet rows decoupled), for tests.
   const Eigen::SparseMatrix<double>& system() const { return system_; }

@@ -21,8 +21,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // The files a run writes at the top of its folder; the field files are matched by pattern.
-constexpr std::array<const char*, 5> kResultFileNames = {"summary.json", "case.yaml", "series.pvd",
-                                                         "probes.csv", "run.log"};
+constexpr std::array<const char*, 6> kResultFileNames = {
+    "summary.json", "case.yaml", "series.pvd", "probes.csv", "run.log", "checkpoint.bin"};
 
 [[noreturn]] void unusable_folder(const fs::path& directory, const std::string& action,
                                   int error_number) {

@@ -49,7 +49,7 @@ class OutputFolder {
 };
 
 /// The files in `directory` that rktsph writes for a run (summary.json, case.yaml, series.pvd,
-/// probes.csv, run.log, fields/fields_NNNNNN.vtu) and that exist, in that order.
+/// probes.csv, run.log, checkpoint.bin, fields/fields_NNNNNN.vtu) and that exist, in that order.
 std::vector<std::filesystem::path> run_result_files(const std::filesystem::path& directory);
 
 }  // namespace rktsph

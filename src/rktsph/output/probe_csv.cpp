@@ -39,6 +39,14 @@ void ProbeCsv::add_row(double time, std::span<const double> values) {
   values_.insert(values_.end(), values.begin(), values.end());
 }
 
+void ProbeCsv::set_values(std::vector<double> values) {
+  if (values.size() % column_names_.size() != 0) {
+    throw std::invalid_argument(fmt::format("ProbeCsv: {} values are not rows of {} columns",
+                                            values.size(), column_names_.size()));
+  }
+  values_ = std::move(values);
+}
+
 std::string ProbeCsv::to_string() const {
   fmt::memory_buffer buffer;
   fmt::format_to(std::back_inserter(buffer), "{}\n", fmt::join(column_names_, ","));

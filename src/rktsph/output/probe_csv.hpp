@@ -28,6 +28,11 @@ class ProbeCsv {
 
   const std::vector<std::string>& column_names() const { return column_names_; }
   std::size_t row_count() const { return values_.size() / column_names_.size(); }
+  /// Every row so far, row-major, time first (what a checkpoint keeps).
+  const std::vector<double>& values() const { return values_; }
+  /// Replaces the rows (a restarted run's, from its checkpoint); a count that is not a whole
+  /// number of rows is std::invalid_argument.
+  void set_values(std::vector<double> values);
 
  private:
   std::vector<std::string> column_names_;

@@ -18,6 +18,10 @@ void PvdCollection::add(double time, std::string file) {
       std::upper_bound(entries_.begin(), entries_.end(), time,
                        [](double new_time, const Entry& entry) { return new_time < entry.time; });
   entries_.insert(position, Entry{time, std::move(file)});
+  write();
+}
+
+void PvdCollection::write() const {
   write_file_atomically(pvd_path_, to_string());
 }
 

@@ -25,6 +25,10 @@ class PvdCollection {
   void add(double time, std::string file);
 
   const std::vector<Entry>& entries() const { return entries_; }
+  /// Replaces the entries (a restarted run's, from its checkpoint) without writing the file.
+  void set_entries(std::vector<Entry> entries) { entries_ = std::move(entries); }
+  /// Rewrites the whole collection atomically with the current entries.
+  void write() const;
   const std::filesystem::path& path() const { return pvd_path_; }
 
   /// The document for the current entries.

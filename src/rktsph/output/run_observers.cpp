@@ -162,6 +162,41 @@ void FieldSeriesWriter::on_finish(const Simulation& simulation, RunStatus status
   if (simulation.state().time != last_written_time_) write(simulation);
 }
 
+void FieldSeriesWriter::on_resume(const Simulation&) {
+  collection_.write();
+  std::vector<std::string> listed;
+  for (const PvdCollection::Entry& entry : collection_.entries())
+    listed.push_back(std::filesystem::path(entry.file).filename().string());
+  for (const auto& file : std::filesystem::directory_iterator(directory_ / "fields")) {
+    const std::string name = file.path().filename().string();
+    const bool series_file = name.rfind("fields_", 0) == 0 && file.path().extension() == ".vtu";
+    if (series_file && std::find(listed.begin(), listed.end(), name) == listed.end())
+      std::filesystem::remove(file.path());
+  }
+}
+
+void FieldSeriesWriter::save_checkpoint(CheckpointOut& out) const {
+  out.put_f64(schedule_.next_time());
+  out.put_f64(last_written_time_);
+  out.put_u64(collection_.entries().size());
+  for (const PvdCollection::Entry& entry : collection_.entries()) {
+    out.put_f64(entry.time);
+    out.put_string(entry.file);
+  }
+}
+
+void FieldSeriesWriter::restore_checkpoint(CheckpointIn& in) {
+  schedule_.set_next_time(in.get_f64());
+  last_written_time_ = in.get_f64();
+  const std::uint64_t count = in.get_u64();
+  std::vector<PvdCollection::Entry> entries;
+  for (std::uint64_t e = 0; e < count; ++e) {
+    const double time = in.get_f64();
+    entries.push_back({time, in.get_string()});
+  }
+  collection_.set_entries(std::move(entries));
+}
+
 ProbeRecorder::ProbeRecorder(const Simulation& simulation, std::filesystem::path path)
     : path_(std::move(path)),
       table_({"time"}),
@@ -240,6 +275,29 @@ void ProbeRecorder::after_step(const Simulation& simulation) {
 
 void ProbeRecorder::on_finish(const Simulation&, RunStatus, const std::string&) {
   table_.flush(path_);
+}
+
+void ProbeRecorder::on_resume(const Simulation&) {
+  table_.flush(path_);
+}
+
+void ProbeRecorder::save_checkpoint(CheckpointOut& out) const {
+  out.put_f64(records_.next_time());
+  out.put_f64(field_outputs_.next_time());
+  out.put_u32(static_cast<std::uint32_t>(table_.column_names().size()));
+  out.put_doubles(table_.values());
+}
+
+void ProbeRecorder::restore_checkpoint(CheckpointIn& in) {
+  records_.set_next_time(in.get_f64());
+  field_outputs_.set_next_time(in.get_f64());
+  const std::uint32_t columns = in.get_u32();
+  if (columns != table_.column_names().size())
+    in.fail(fmt::format("{} probe columns stored where this case has {}", columns,
+                        table_.column_names().size()));
+  std::vector<double> values = in.get_doubles();
+  if (values.size() % columns != 0) in.fail("probe values that are not whole rows");
+  table_.set_values(std::move(values));
 }
 
 void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,

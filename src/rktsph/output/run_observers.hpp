@@ -24,6 +24,9 @@ class OutputSchedule {
   explicit OutputSchedule(double interval);
   /// True if an output is due at `time` (and moves on to the next one).
   bool due(double time, double time_step);
+  /// The next due time, saved and restored by checkpoints.
+  double next_time() const { return next_time_; }
+  void set_next_time(double next_time) { next_time_ = next_time; }
 
  private:
   double interval_;
@@ -33,10 +36,15 @@ class OutputSchedule {
 /// Writes fields/fields_NNNNNN.vtu at t = 0, when OutputSchedule(output.interval) says, and at
 /// the end, and keeps series.pvd listing them. After a divergence or a failure nothing more is
 /// written: the last files are the last good state. An interrupted run writes its last step.
-class FieldSeriesWriter final : public Observer {
+class FieldSeriesWriter final : public Observer, public Checkpointed {
  public:
   FieldSeriesWriter(const Simulation& simulation, std::filesystem::path directory);
   void on_start(const Simulation& simulation) override;
+  /// Rewrites series.pvd with the checkpoint's entries and removes the VTU files it does not
+  /// list (written after the checkpoint by the run that was killed).
+  void on_resume(const Simulation& simulation) override;
+  void save_checkpoint(CheckpointOut& out) const override;
+  void restore_checkpoint(CheckpointIn& in) override;
   void after_step(const Simulation& simulation) override;
   void on_finish(const Simulation& simulation, RunStatus status,
                  const std::string& message) override;
@@ -54,11 +62,17 @@ class FieldSeriesWriter final : public Observer {
 /// Records probes (group reductions of named quantities) into probes.csv: one column per probe
 /// and field, named "<probe>.<field>". The file is rewritten whole with every field output (the
 /// same schedule as FieldSeriesWriter), every 2 s of wall time and at the end.
-class ProbeRecorder final : public Observer {
+class ProbeRecorder final : public Observer, public Checkpointed {
  public:
   /// Resolves the probes of the case; InputError at the probe for unknown groups or fields.
   ProbeRecorder(const Simulation& simulation, std::filesystem::path path);
   void on_start(const Simulation& simulation) override;
+  /// Rewrites probes.csv with the checkpoint's rows, dropping any recorded after it.
+  void on_resume(const Simulation& simulation) override;
+  /// The rows themselves (bit-exact doubles), not a position in probes.csv: the file is only
+  /// flushed now and then, so the checkpoint cannot rely on what is on disk.
+  void save_checkpoint(CheckpointOut& out) const override;
+  void restore_checkpoint(CheckpointIn& in) override;
   void after_step(const Simulation& simulation) override;
   void on_finish(const Simulation& simulation, RunStatus status,
                  const std::string& message) override;

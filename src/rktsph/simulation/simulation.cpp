@@ -226,10 +226,15 @@ RunStatus Simulation::finish_observers(RunStatus status) {
 RunStatus Simulation::run() {
   const auto start = std::chrono::steady_clock::now();
   RunStatus status = RunStatus::Completed;
-  if (!notify_observers([this](Observer& observer) { observer.on_start(*this); }))
-    status = RunStatus::Failed;
+  const auto begin = [this](Observer& observer) {
+    if (resumed_)
+      observer.on_resume(*this);
+    else
+      observer.on_start(*this);
+  };
+  if (!notify_observers(begin)) status = RunStatus::Failed;
   // Every step is checked; on divergence the observers keep the last good output on disk.
-  for (long s = 0; s < total_steps_ && status == RunStatus::Completed; ++s) {
+  for (long s = state_.step; s < total_steps_ && status == RunStatus::Completed; ++s) {
     // Between steps, so an interrupted run ends on a whole step its observers can record.
     if (const std::string reason = stop_check_ ? stop_check_() : std::string(); !reason.empty()) {
       message_ = fmt::format("interrupted at step {} (t = {:.6g} s): {}", state_.step, state_.time,
@@ -258,6 +263,29 @@ RunStatus Simulation::run() {
   }
   wall_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return finish_observers(status);
+}
+
+void Simulation::save_checkpoint(CheckpointOut& out) const {
+  out.put_f64(state_.time);
+  out.put_i64(state_.step);
+  out.put_fields(state_.fields);
+  out.put_fields(state_.internal);
+  out.put_fields(state_.displacement);
+  out.put_fields(state_.strain);
+  if (projection_) projection_->save_checkpoint(out);
+}
+
+void Simulation::restore_checkpoint(CheckpointIn& in) {
+  state_.time = in.get_f64();
+  state_.step = in.get_i64();
+  if (state_.step < 0 || state_.step > total_steps_)
+    in.fail(fmt::format("step {} outside this run's 0 to {}", state_.step, total_steps_));
+  in.get_fields_into(state_.fields);
+  in.get_fields_into(state_.internal);
+  in.get_fields_into(state_.displacement);
+  in.get_fields_into(state_.strain);
+  if (projection_) projection_->restore_checkpoint(in);
+  resumed_ = true;
 }
 
 }  // namespace rktsph

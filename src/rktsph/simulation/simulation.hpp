@@ -13,6 +13,7 @@
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/models/dry_solid.hpp"
 #include "rktsph/models/pressure_projection.hpp"
+#include "rktsph/simulation/checkpoint.hpp"
 #include "rktsph/simulation/state.hpp"
 #include "rktsph/time/rk_taylor_step.hpp"
 
@@ -35,6 +36,9 @@ class Observer {
  public:
   virtual ~Observer() = default;
   virtual void on_start(const Simulation& simulation) { (void)simulation; }
+  /// Called instead of on_start when the run continues from a checkpoint (the observers that
+  /// write files have restored their own state from it by then).
+  virtual void on_resume(const Simulation& simulation) { (void)simulation; }
   virtual void after_step(const Simulation& simulation) { (void)simulation; }
   virtual void on_finish(const Simulation& simulation, RunStatus status,
                          const std::string& message) {
@@ -44,7 +48,7 @@ class Observer {
   }
 };
 
-class Simulation {
+class Simulation final : public Checkpointed {
  public:
   /// Builds everything; InputError for inconsistent input, RunError for an unusable lattice.
   explicit Simulation(CaseDescription description);
@@ -77,6 +81,13 @@ class Simulation {
   long total_steps() const { return total_steps_; }
   double wall_seconds() const { return wall_seconds_; }
 
+  /// The state and every other value the next step depends on (the pressure projection's
+  /// warm start); what the case determines (operators, the strain hourglass stiffness's
+  /// reference stresses of t = 0) is rebuilt from it instead.
+  void save_checkpoint(CheckpointOut& out) const override;
+  /// Restores what save_checkpoint wrote; run() then continues from that step.
+  void restore_checkpoint(CheckpointIn& in) override;
+
  private:
   void initialise_state();
   /// Describes the first value that is not finite or beyond the model's divergence bound (field,
@@ -101,6 +112,7 @@ class Simulation {
   std::string message_;
   std::vector<Observer*> observers_;
   StopCheck stop_check_;
+  bool resumed_ = false;
 };
 
 }  // namespace rktsph
