@@ -23,7 +23,7 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
                        description.file));
   write_file_atomically(directory / "case.yaml", write_case_yaml(description));
 
-  Simulation simulation(description);
+  Simulation simulation(description, options.limits);
   log.info(
       fmt::format("{} SPH nodes, {} stress points, {} boundary nodes; dt = {:.6g} s, {} steps, "
                   "{} threads",

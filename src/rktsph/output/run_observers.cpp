@@ -33,17 +33,12 @@ const std::vector<std::string>& saturated_output_fields() {
   return names;
 }
 
-}  // namespace
-
-FieldSeriesWriter::FieldSeriesWriter(const Simulation& simulation, std::filesystem::path directory)
-    : directory_(std::move(directory)),
-      collection_(directory_ / "series.pvd"),
-      interval_(simulation.description().output.interval) {
+// The output fields of the case, or every field of the model; InputError for one the model has not.
+std::vector<std::string> output_field_selection(const Simulation& simulation) {
   const OutputSpec& output = simulation.description().output;
   const bool saturated = simulation.model().pore_pressure_field() >= 0;
   const auto& available = saturated ? saturated_output_fields() : dry_output_fields();
-  selection_ = output.fields.empty() ? available : output.fields;
-  for (const std::string& name : selection_) {
+  for (const std::string& name : output.fields) {
     if (std::find(available.begin(), available.end(), name) == available.end()) {
       std::string allowed;
       for (const std::string& a : available)
@@ -54,6 +49,22 @@ FieldSeriesWriter::FieldSeriesWriter(const Simulation& simulation, std::filesyst
                        allowed);
     }
   }
+  return output.fields.empty() ? available : output.fields;
+}
+
+}  // namespace
+
+void check_run_observers(const Simulation& simulation) {
+  output_field_selection(simulation);
+  // The recorder only resolves its probes when constructed; it writes at on_start and after.
+  const ProbeRecorder probes(simulation, {});
+}
+
+FieldSeriesWriter::FieldSeriesWriter(const Simulation& simulation, std::filesystem::path directory)
+    : directory_(std::move(directory)),
+      collection_(directory_ / "series.pvd"),
+      interval_(simulation.description().output.interval) {
+  selection_ = output_field_selection(simulation);
   std::filesystem::create_directories(directory_ / "fields");
 }
 

@@ -36,10 +36,23 @@ class Observer {
   }
 };
 
+/// What a run may ask for; checked from the case before anything is built.
+struct SimulationLimits {
+  /// Largest estimated number of SPH nodes (the `--max-nodes` flag of run and check).
+  double max_nodes = 1e7;
+};
+
+/// Resident memory of a run [bytes] with this many SPH nodes, lattice points of the node lookup
+/// and smoothing length h/dx: measured peak RSS per node (/usr/bin/time -v, runs of 10k-160k nodes,
+/// docs/input-reference.md "Limits"): 3.1 KB dry and 3.5 KB saturated at h = 0.75 dx, 6.7 KB
+/// saturated at 1.3 dx; the larger figures, linear in h, plus 4 bytes per lattice point.
+double estimated_run_memory(double sph_nodes, double lattice_points, double h_over_dx);
+
 class Simulation {
  public:
-  /// Builds everything; InputError for inconsistent input, RunError for an unusable lattice.
-  explicit Simulation(CaseDescription description);
+  /// Builds everything; InputError for inconsistent input or a case above `limits`, RunError for
+  /// an unusable lattice.
+  explicit Simulation(CaseDescription description, SimulationLimits limits = {});
 
   void add_observer(Observer& observer) { observers_.push_back(&observer); }
   /// Runs to the end time. A value that is not finite or beyond the model's divergence bound stops
@@ -62,10 +75,18 @@ class Simulation {
   /// The pressure projection of the saturated model, or null for a dry one.
   const PressureProjection* pressure_projection() const { return projection_.get(); }
   long total_steps() const { return total_steps_; }
+  /// The size estimated from the shapes before the lattice was built.
+  const NodeEstimate& node_estimate() const { return node_estimate_; }
+  /// estimated_run_memory() of the lattice that was built [bytes].
+  double estimated_memory() const;
   double wall_seconds() const { return wall_seconds_; }
 
  private:
   void initialise_state();
+  /// Where dt comes from, with the values, for messages.
+  std::string time_step_origin(const std::vector<std::string>& material_names) const;
+  /// The step of the run's step `index` (0-based): dt, or what is left to time.end for the last.
+  double step_length(long index) const;
   /// Describes the first value that is not finite or beyond the model's divergence bound (field,
   /// node, position), or returns an empty string.
   std::string find_divergence(const State& state) const;
@@ -78,6 +99,7 @@ class Simulation {
   std::unique_ptr<RkTaylorStep> step_;
   std::unique_ptr<PressureProjection> projection_;
   State state_;
+  NodeEstimate node_estimate_;
   double time_step_ = 0.0;
   long total_steps_ = 0;
   double wall_seconds_ = 0.0;
