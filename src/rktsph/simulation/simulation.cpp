@@ -138,6 +138,34 @@ long checked_step_count(const CaseDescription& description, double dt,
                                steps));
 }
 
+// The run's Courant number C = dt c_p / dx against the stable limit; the error names courant or,
+// when dt is given, time_step with the Courant number it implies.
+void check_courant(const CaseDescription& description, double courant, double wave_speed, double dx,
+                   bool compact_stencils) {
+  const NumericsSpec& numerics = description.numerics;
+  const double limit = stable_courant_limit(numerics.artificial_viscosity, compact_stencils);
+  if (courant <= limit * (1.0 + 1e-9)) return;
+  std::string reason = "the two-step Lax-Wendroff limit";
+  if (numerics.artificial_viscosity > 0.0)
+    reason = fmt::format("with artificial_viscosity {}, sqrt(1 + a^2) - a",
+                         numerics.artificial_viscosity);
+  if (!compact_stencils && limit == 0.75)
+    reason = fmt::format("with h_over_dx = {} (stencils wider than a cell)", numerics.h_over_dx);
+  const std::string problem = fmt::format(
+      "{}the step is unstable above Courant number {:.4g} ({}, measured: docs/theory.md §2.5)",
+      numerics.time_step ? fmt::format("this time step is Courant number C = dt c_p / dx = {:.4g} "
+                                       "(c_p = {:.4g} m/s, dx = {} m); ",
+                                       courant, wave_speed, dx)
+                         : "",
+      limit, reason);
+  if (numerics.time_step)
+    throw InputError(numerics.where, "numerics.time_step", fmt::format("{}", *numerics.time_step),
+                     problem,
+                     fmt::format("a time step of at most {:.4g} s", limit * dx / wave_speed));
+  throw InputError(numerics.where, "numerics.courant", fmt::format("{}", numerics.courant), problem,
+                   fmt::format("a number in (0, {:.4g}]", limit));
+}
+
 }  // namespace
 
 std::string Simulation::time_step_origin(const std::vector<std::string>& material_names) const {
@@ -154,6 +182,11 @@ std::string Simulation::time_step_origin(const std::vector<std::string>& materia
       "(young_modulus {}, density {})",
       numerics.courant, nodes_.spacing, model_->max_wave_speed(), material_names[stiffest],
       material.elastic().young_modulus, material.density());
+}
+
+double stable_courant_limit(double viscosity, bool compact_stencils) {
+  const double lax_wendroff = std::sqrt(1.0 + viscosity * viscosity) - viscosity;
+  return compact_stencils ? lax_wendroff : std::min(lax_wendroff, 0.75);
 }
 
 double estimated_run_memory(double sph_nodes, double lattice_points, double h_over_dx) {
@@ -226,6 +259,10 @@ Simulation::Simulation(CaseDescription description, SimulationLimits limits)
                                  numerics.h_over_dx),
                      "all, or h_over_dx below 0.79 (cubic spline; 0.52 for the quintic spline "
                      "and the Gaussian)");
+  check_courant(description_, time_step_ * model_->max_wave_speed() / nodes_.spacing,
+                model_->max_wave_speed(), nodes_.spacing,
+                // Measured in 2D; a 1D bar is exact at C = 1 whatever its stencils.
+                operators.compact_stencils || nodes_.dimension < 2);
   step_ = std::make_unique<RkTaylorStep>(*model_, nodes_, std::move(operators), *conditions_);
   if (description_.model == ModelKind::SaturatedVpw) {
     projection_ = std::make_unique<PressureProjection>(

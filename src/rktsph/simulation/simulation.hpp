@@ -48,6 +48,14 @@ struct SimulationLimits {
 /// saturated at 1.3 dx; the larger figures, linear in h, plus 4 bytes per lattice point.
 double estimated_run_memory(double sph_nodes, double lattice_points, double h_over_dx);
 
+/// The largest Courant number at which the step is stable, measured as the spectral radius of the
+/// full step matrix (<= 1 + 1e-9) on a 12 x 5 block with every boundary type (docs/theory.md
+/// §2.5, tests CourantLimit*): on compact stencils the Lax-Wendroff limit 1 lowered by the
+/// artificial viscosity alpha to sqrt(1 + alpha^2) - alpha (measured 1.013, 0.791, 0.643, 0.433
+/// at alpha = 0, 0.25, 0.5, 1; the formula gives 1, 0.781, 0.618, 0.414); 2D stencils wider than
+/// a cell are stable only up to 0.766 at h = 1.3 dx without viscosity, so they are held to 0.75.
+double stable_courant_limit(double viscosity, bool compact_stencils);
+
 class Simulation {
  public:
   /// Builds everything; InputError for inconsistent input or a case above `limits`, RunError for
