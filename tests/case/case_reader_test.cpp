@@ -648,7 +648,7 @@ TEST(CaseOverrides, BadValueIsReportedAgainstTheOverride) {
   EXPECT_EQ(range.location().file, "<--set numerics.courant=2>");
   EXPECT_EQ(range.location().line, 0);
   EXPECT_EQ(range.key(), "numerics.courant");
-  EXPECT_EQ(range.allowed(), "a number in (0, 1.5]");
+  EXPECT_EQ(range.allowed(), "a number in (0, 1]");
   const InputError type = read_error(base, {parse_override("geometry.spacing=fine")});
   EXPECT_EQ(type.location().file, "<--set geometry.spacing=fine>");
   const InputError syntax = read_error(base, {parse_override("geometry.spacing=[1")});
