@@ -20,6 +20,7 @@
 #include "rktsph/core/error.hpp"
 #include "rktsph/driver/interrupt.hpp"
 #include "rktsph/driver/run_case.hpp"
+#include "rktsph/output/run_observers.hpp"
 #include "rktsph/simulation/simulation.hpp"
 #include "rktsph/validation/validation_case.hpp"
 
@@ -143,7 +144,7 @@ std::filesystem::path run_directory_for(const CaseDescription& description,
 
 int command_run(const std::string& case_path, const std::string& output, int threads,
                 const std::vector<std::string>& sets, bool quiet, bool overwrite,
-                const std::string& restart) {
+                const std::string& restart, const SimulationLimits& limits) {
   if (threads > 0) omp_set_num_threads(threads);
   const CaseDescription description = read_case_file(case_path, parse_overrides(sets));
   if (overwrite && !restart.empty())
@@ -159,6 +160,7 @@ int command_run(const std::string& case_path, const std::string& output, int thr
   options.existing_results = overwrite ? ExistingResults::Overwrite : ExistingResults::Refuse;
   const InterruptHandler interrupts;
   options.stop_check = &InterruptHandler::stop_reason;
+  options.limits = limits;
   const RunOutcome outcome = run_case(description, directory, options);
   if (outcome.status == RunStatus::Interrupted) {
     std::cerr << "rktsph: " << outcome.message << "\n"
@@ -178,14 +180,18 @@ int command_run(const std::string& case_path, const std::string& output, int thr
   return 0;
 }
 
-int command_check(const std::string& case_path, const std::vector<std::string>& sets) {
+int command_check(const std::string& case_path, const std::vector<std::string>& sets,
+                  const SimulationLimits& limits) {
   const CaseDescription description = read_case_file(case_path, parse_overrides(sets));
-  // Building the simulation checks materials, groups, boundary conditions and stencils too.
-  const Simulation simulation(description);
-  std::cout << fmt::format("{}: OK ({} SPH nodes, {} stress points, dt = {:.4g} s, {} steps)\n",
-                           case_path, simulation.nodes().sph_nodes.size(),
-                           simulation.nodes().stress_points.size(), simulation.time_step(),
-                           simulation.total_steps());
+  // Building the simulation checks materials, groups, boundary conditions and stencils too; the
+  // observers' settings are checked as run checks them, without writing anything.
+  const Simulation simulation(description, limits);
+  check_run_observers(simulation);
+  std::cout << fmt::format(
+      "{}: OK ({} SPH nodes, {} stress points, dt = {:.4g} s, {} steps, memory about {:.3g} "
+      "MB)\n",
+      case_path, simulation.nodes().sph_nodes.size(), simulation.nodes().stress_points.size(),
+      simulation.time_step(), simulation.total_steps(), simulation.estimated_memory() * 1e-6);
   return 0;
 }
 
@@ -295,10 +301,16 @@ int main(int argc, char** argv) {
   run->add_option("--restart", restart,
                   "Continue the run in this folder from its last checkpoint (the case and --set "
                   "overrides must be those of that run)");
+  SimulationLimits limits;
+  const char* max_nodes_help =
+      "Refuse a case whose geometry is estimated at more SPH nodes than this (default 1e7, "
+      "about 35 GB)";
+  run->add_option("--max-nodes", limits.max_nodes, max_nodes_help)->check(CLI::PositiveNumber);
 
   CLI::App* check = app.add_subcommand("check", "Validate a case file without running it");
   check->add_option("case", case_path, "Case file (YAML)")->required();
   check->add_option("--set", sets, "Override a case key (repeatable)");
+  check->add_option("--max-nodes", limits.max_nodes, max_nodes_help)->check(CLI::PositiveNumber);
 
   std::vector<std::string> names;
   bool all = false, quick = false, json = false;
@@ -341,8 +353,9 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*run) return command_run(case_path, output, threads, sets, quiet, overwrite, restart);
-    if (*check) return command_check(case_path, sets);
+    if (*run)
+      return command_run(case_path, output, threads, sets, quiet, overwrite, restart, limits);
+    if (*check) return command_check(case_path, sets, limits);
     if (*validate) return command_validate(names, all, quick, json, output, report, threads);
     if (*plot)
       return command_plot(run_directory, field, component, plot_time, magnification, output);

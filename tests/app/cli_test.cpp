@@ -326,9 +326,10 @@ TEST(CommandLine, RunWritesAReadableSeriesProbesAndSummary) {
 }
 
 TEST(CommandLine, DivergingRunStopsWithADiagnosisAndKeepsItsLastGoodOutput) {
-  // Courant 1.5 is beyond the stability limit of 1 (docs/theory.md §2.4): the run must blow up.
+  // h = 2.5 dx is unstable at every Courant number (docs/theory.md §2.5, §3.3): the run must blow
+  // up (a Courant number beyond the limit is refused before the run).
   const fs::path out = scratch("diverge");
-  const std::string text = replaced(replaced(kBar, "courant: 0.9", "courant: 1.5"),
+  const std::string text = replaced(replaced(kBar, "courant: 0.9", "courant: 0.9, h_over_dx: 2.5"),
                                     "time: {end: 0.05}", "time: {end: 20.0}");
   const Result result =
       run("run -q " + write_case("diverge.yaml", text).string() + " -o " + out.string());

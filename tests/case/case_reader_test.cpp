@@ -334,7 +334,7 @@ TEST(CaseReader, RangeLimitsAreOpenOrClosedAsSpecified) {
     return base + "numerics:\n  " + entry + "\n";
   };
   // Accepted edges.
-  EXPECT_EQ(read_case_text(with_numerics("courant: 1.5"), kFile).numerics.courant, 1.5);
+  EXPECT_EQ(read_case_text(with_numerics("courant: 1"), kFile).numerics.courant, 1.0);
   EXPECT_EQ(read_case_text(with_numerics("h_over_dx: 3"), kFile).numerics.h_over_dx, 3.0);
   EXPECT_EQ(read_case_text(with_numerics("hourglass: {kappa: 0}"), kFile).numerics.hourglass_kappa,
             0.0);
@@ -345,8 +345,8 @@ TEST(CaseReader, RangeLimitsAreOpenOrClosedAsSpecified) {
   EXPECT_EQ(controls.strain_hourglass_stiffness, 0.0);
   // Rejected edges and beyond, each at the value's line with the range in `allowed`.
   const std::vector<std::pair<std::string, std::string>> rejected = {
-      {"courant: 0", "(0, 1.5]"},
-      {"courant: 1.6", "(0, 1.5]"},
+      {"courant: 0", "(0, 1]"},
+      {"courant: 1.01", "(0, 1]"},
       {"h_over_dx: 0.5", "(0.5, 3]"},
       {"hourglass: {kappa: 1.01}", "[0, 1]"},
       {"rk_max_substeps: 0", "[1, "},
@@ -648,7 +648,7 @@ TEST(CaseOverrides, BadValueIsReportedAgainstTheOverride) {
   EXPECT_EQ(range.location().file, "<--set numerics.courant=2>");
   EXPECT_EQ(range.location().line, 0);
   EXPECT_EQ(range.key(), "numerics.courant");
-  EXPECT_EQ(range.allowed(), "a number in (0, 1.5]");
+  EXPECT_EQ(range.allowed(), "a number in (0, 1]");
   const InputError type = read_error(base, {parse_override("geometry.spacing=fine")});
   EXPECT_EQ(type.location().file, "<--set geometry.spacing=fine>");
   const InputError syntax = read_error(base, {parse_override("geometry.spacing=[1")});

@@ -14,9 +14,10 @@
 namespace rktsph::test {
 
 /// The matrix of the one-step map on the first `size` unknowns (field-major), built column by
-/// column; unknown k is measured in units of scale[k] (1 when `scale` is empty).
+/// column; unknown k is measured in units of scale[k] (1 when `scale` is empty). `dt` 0: the
+/// simulation's time step (another is for probing beyond the limits a case may ask for).
 inline Eigen::MatrixXd step_matrix(Simulation& simulation, Eigen::Index size,
-                                   const std::vector<double>& scale = {}) {
+                                   const std::vector<double>& scale = {}, double dt = 0.0) {
   State& state = simulation.state();
   auto unit = [&](Eigen::Index k) {
     return scale.empty() ? 1.0 : scale[static_cast<std::size_t>(k)];
@@ -28,7 +29,7 @@ inline Eigen::MatrixXd step_matrix(Simulation& simulation, Eigen::Index size,
     std::fill(state.strain.data().begin(), state.strain.data().end(), 0.0);
     state.fields.data()[static_cast<std::size_t>(column)] = unit(column);
     state.time = 0.0;
-    simulation.step().advance(state, simulation.time_step());
+    simulation.step().advance(state, dt > 0.0 ? dt : simulation.time_step());
     for (Eigen::Index row = 0; row < size; ++row)
       matrix(row, column) = state.fields.data()[static_cast<std::size_t>(row)] / unit(row);
   }
@@ -88,12 +89,12 @@ inline AffineStep affine_step(Simulation& simulation, double impedance) {
   return step;
 }
 
-inline double spectral_radius(Simulation& simulation) {
+inline double spectral_radius(Simulation& simulation, double dt = 0.0) {
   const FieldArray& fields = simulation.state().fields;
   const auto size = static_cast<Eigen::Index>((fields.field_count() - 1) * fields.point_count());
   using LongMatrix = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
-  const Eigen::EigenSolver<LongMatrix> solver(step_matrix(simulation, size).cast<long double>(),
-                                              false);
+  const Eigen::EigenSolver<LongMatrix> solver(
+      step_matrix(simulation, size, {}, dt).cast<long double>(), false);
   return static_cast<double>(solver.eigenvalues().cwiseAbs().maxCoeff());
 }
 

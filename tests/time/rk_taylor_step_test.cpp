@@ -208,9 +208,10 @@ TEST(RkTaylorStep, ANodeInNoCellIsReportedWithItsPosition) {
 }
 
 TEST(RkTaylorStepSlow, SpectralRadiusExceedsOneBeyondTheCourantLimit) {
-  // Sanity of the test above: the same tool must see the instability at C = 1.1 (limit 1.0).
-  Simulation simulation(stability_block(1.1, false).description());
-  EXPECT_GT(spectral_radius(simulation), 1.01);
+  // Sanity of the test above: the same tool must see the instability at C = 1.1 (limit 1.0),
+  // which a case may no longer ask for, so the step is probed with dt = 1.1 / 0.5 of C = 0.5's.
+  Simulation simulation(stability_block(0.5, false).description());
+  EXPECT_GT(spectral_radius(simulation, 2.2 * simulation.time_step()), 1.01);
 }
 
 // Rollers (mirror planes) on every side: no incomplete node, a checkerboard stays exact.

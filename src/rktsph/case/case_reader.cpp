@@ -29,7 +29,9 @@ constexpr double kForever = 1e300;
 constexpr long kMaxCount = 1000000000000000L;
 
 const NumberRange kSmoothingRatioRange{0.5, 3.0, true, false};  // h/dx, docs/input-reference.md
-const NumberRange kCourantRange{0.0, 1.5, true, false};         // prototype-findings: C_max ~ 1.5
+// The two-step Lax-Wendroff limit; lower limits for the options that lower it are checked when the
+// simulation is built (docs/theory.md §2.5: 1.2 and 1.5 diverged on a plain block).
+const NumberRange kCourantRange{0.0, 1.0, true, false};
 const NumberRange kUnitInterval{0.0, 1.0, false, false};
 
 const std::vector<std::string> kShapeKinds = {"segment", "rectangle", "polygon"};

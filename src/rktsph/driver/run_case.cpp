@@ -66,7 +66,7 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
   std::unique_ptr<ProbeRecorder> probes;
   try {
     write_file_atomically(directory / "case.yaml", resolved_case);
-    simulation = std::make_unique<Simulation>(description);
+    simulation = std::make_unique<Simulation>(description, options.limits);
     log.info(
         fmt::format("{} SPH nodes, {} stress points, {} boundary nodes; dt = {:.6g} s, {} steps, "
                     "{} threads",

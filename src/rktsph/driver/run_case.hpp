@@ -16,6 +16,7 @@ namespace rktsph {
 
 struct RunOptions {
   bool quiet = false;
+  SimulationLimits limits;  ///< checked from the case before anything is built
   bool progress_is_terminal = false;
   std::ostream* progress_stream = nullptr;  // null: no progress display
   /// Further observers of the loop (validation metrics sampled while the run goes), added after

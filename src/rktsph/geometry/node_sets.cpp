@@ -76,7 +76,49 @@ void check_vertices_on_lattice(const GeometrySpec& geometry, int dimension, cons
       }
 }
 
+// Length (1D) or area (2D) of a shape, and its boundary length (2D).
+std::pair<double, double> shape_measure(const ShapeSpec& shape, int dimension) {
+  const std::vector<Vec3>& v = shape.vertices;
+  if (dimension < 2 || shape.kind == ShapeSpec::Kind::Segment)
+    return {std::abs(v[1][0] - v[0][0]), 0.0};
+  if (shape.kind == ShapeSpec::Kind::Rectangle) {
+    const double w = std::abs(v[1][0] - v[0][0]), h = std::abs(v[1][1] - v[0][1]);
+    return {w * h, 2.0 * (w + h)};
+  }
+  double twice_area = 0.0, perimeter = 0.0;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const Vec3& a = v[k];
+    const Vec3& b = v[(k + 1) % v.size()];
+    twice_area += a[0] * b[1] - b[0] * a[1];
+    perimeter += std::hypot(b[0] - a[0], b[1] - a[1]);
+  }
+  return {0.5 * std::abs(twice_area), perimeter};
+}
+
 }  // namespace
+
+NodeEstimate estimate_node_sets(const GeometrySpec& geometry, int dimension) {
+  NodeEstimate estimate;
+  const double dx = geometry.spacing;
+  for (std::size_t s = 0; s < geometry.shapes.size(); ++s) {
+    const auto [measure, boundary] = shape_measure(geometry.shapes[s], dimension);
+    const double cells = measure / std::pow(dx, dimension);
+    const double nodes = dimension < 2 ? cells + 1.0 : cells + 0.5 * boundary / dx + 1.0;
+    estimate.sph_nodes += nodes;
+    estimate.stress_points += cells;
+    if (nodes > estimate.largest_shape_nodes) {
+      estimate.largest_shape_nodes = nodes;
+      estimate.largest_shape = s;
+    }
+  }
+  const Box box = bounding_box(geometry, dimension);
+  estimate.lattice_points = 1.0;
+  for (int a = 0; a < dimension; ++a)
+    estimate.lattice_points *= std::floor((box.max[a] - box.min[a]) / dx + 0.5) + 1.0;
+  estimate.sph_nodes = std::min(estimate.sph_nodes, estimate.lattice_points);
+  estimate.stress_points = std::min(estimate.stress_points, estimate.lattice_points);
+  return estimate;
+}
 
 bool polygon_contains(const std::vector<Vec3>& vertices, double x, double y, double tolerance) {
   const std::size_t n = vertices.size();

@@ -36,6 +36,19 @@ struct NodeSets {
   std::vector<std::int32_t> node_lookup;
 };
 
+/// The size of a lattice before it is built, in double so that no count can overflow: the nodes
+/// and stress points of every shape (Pick's theorem: area/dx^d plus half the boundary; overlaps
+/// counted twice, so an upper bound) and the lattice points of the shapes' bounding box, which
+/// the node lookup spans.
+struct NodeEstimate {
+  double sph_nodes = 0.0;
+  double stress_points = 0.0;
+  double lattice_points = 0.0;
+  double largest_shape_nodes = 0.0;
+  std::size_t largest_shape = 0;  ///< index into geometry.shapes
+};
+NodeEstimate estimate_node_sets(const GeometrySpec& geometry, int dimension);
+
 /// Fills the shapes of `geometry` with nodes. Every shape vertex must be a lattice point so that
 /// the physical boundary carries nodes (InputError at the shape otherwise).
 NodeSets build_node_sets(const GeometrySpec& geometry, int dimension,

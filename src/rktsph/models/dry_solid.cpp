@@ -80,15 +80,19 @@ int DrySolid::stress_field(int i, int j) const {
   return -1;
 }
 
+double DrySolid::wave_speed(std::int32_t material) const {
+  const Material& m = *materials_[static_cast<std::size_t>(material)];
+  const ElasticConstants& e = m.elastic();
+  const double modulus = kinematics_ == Kinematics::Bar1D         ? e.young_modulus
+                         : kinematics_ == Kinematics::PlaneStrain ? e.constrained_modulus()
+                                                                  : e.plane_stress_modulus();
+  return std::sqrt(modulus / m.density());
+}
+
 double DrySolid::max_wave_speed() const {
   double speed = 0.0;
-  for (const auto& material : materials_) {
-    const ElasticConstants& e = material->elastic();
-    const double modulus = kinematics_ == Kinematics::Bar1D         ? e.young_modulus
-                           : kinematics_ == Kinematics::PlaneStrain ? e.constrained_modulus()
-                                                                    : e.plane_stress_modulus();
-    speed = std::max(speed, std::sqrt(modulus / material->density()));
-  }
+  for (std::size_t k = 0; k < materials_.size(); ++k)
+    speed = std::max(speed, wave_speed(static_cast<std::int32_t>(k)));
   return speed;
 }
 

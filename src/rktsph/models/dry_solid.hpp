@@ -54,6 +54,8 @@ class DrySolid : public PhysicsModel {
   int velocity_field(int axis) const override { return axis < dimension() ? axis : -1; }
   int stress_field(int i, int j) const override;
   double max_wave_speed() const override;
+  /// c_p of one material: sqrt(modulus / density) with the modulus of the kinematics.
+  double wave_speed(std::int32_t material) const;
   double density(std::int32_t material) const override {
     return materials_[static_cast<std::size_t>(material)]->density();
   }

@@ -41,7 +41,32 @@ const std::vector<std::string>& saturated_output_fields() {
   return names;
 }
 
+// The output fields of the case, or every field of the model; InputError for one the model has not.
+std::vector<std::string> output_field_selection(const Simulation& simulation) {
+  const OutputSpec& output = simulation.description().output;
+  const bool saturated = simulation.model().pore_pressure_field() >= 0;
+  const auto& available = saturated ? saturated_output_fields() : dry_output_fields();
+  for (const std::string& name : output.fields) {
+    if (std::find(available.begin(), available.end(), name) == available.end()) {
+      std::string allowed;
+      for (const std::string& a : available)
+        allowed += (allowed.empty() ? "" : ", ") + a;
+      throw InputError(output.where, "output.fields", name,
+                       saturated ? "field not available for the saturated model"
+                                 : "field not available for the dry solid model",
+                       allowed);
+    }
+  }
+  return output.fields.empty() ? available : output.fields;
+}
+
 }  // namespace
+
+void check_run_observers(const Simulation& simulation) {
+  output_field_selection(simulation);
+  // The recorder only resolves its probes when constructed; it writes at on_start and after.
+  const ProbeRecorder probes(simulation, {});
+}
 
 OutputSchedule::OutputSchedule(double interval)
     : interval_(interval),
@@ -58,21 +83,7 @@ FieldSeriesWriter::FieldSeriesWriter(const Simulation& simulation, std::filesyst
     : directory_(std::move(directory)),
       collection_(directory_ / "series.pvd"),
       schedule_(simulation.description().output.interval) {
-  const OutputSpec& output = simulation.description().output;
-  const bool saturated = simulation.model().pore_pressure_field() >= 0;
-  const auto& available = saturated ? saturated_output_fields() : dry_output_fields();
-  selection_ = output.fields.empty() ? available : output.fields;
-  for (const std::string& name : selection_) {
-    if (std::find(available.begin(), available.end(), name) == available.end()) {
-      std::string allowed;
-      for (const std::string& a : available)
-        allowed += (allowed.empty() ? "" : ", ") + a;
-      throw InputError(output.where, "output.fields", name,
-                       saturated ? "field not available for the saturated model"
-                                 : "field not available for the dry solid model",
-                       allowed);
-    }
-  }
+  selection_ = output_field_selection(simulation);
   std::error_code error;
   std::filesystem::create_directories(directory_ / "fields", error);
   if (error)

@@ -33,6 +33,11 @@ class OutputSchedule {
   double next_time_;
 };
 
+/// Everything the standard observers of a run check in their constructors (output fields, probe
+/// groups and fields), without writing anything: `check` runs it so that it refuses what `run`
+/// refuses, with the same message.
+void check_run_observers(const Simulation& simulation);
+
 /// Writes fields/fields_NNNNNN.vtu at t = 0, when OutputSchedule(output.interval) says, and at
 /// the end, and keeps series.pvd listing them. After a divergence or a failure nothing more is
 /// written: the last files are the last good state. An interrupted run writes its last step.

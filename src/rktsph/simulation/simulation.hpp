@@ -48,10 +48,31 @@ class Observer {
   }
 };
 
+/// What a run may ask for; checked from the case before anything is built.
+struct SimulationLimits {
+  /// Largest estimated number of SPH nodes (the `--max-nodes` flag of run and check).
+  double max_nodes = 1e7;
+};
+
+/// Resident memory of a run [bytes] with this many SPH nodes, lattice points of the node lookup
+/// and smoothing length h/dx: measured peak RSS per node (/usr/bin/time -v, runs of 10k-160k nodes,
+/// docs/input-reference.md "Limits"): 3.1 KB dry and 3.5 KB saturated at h = 0.75 dx, 6.7 KB
+/// saturated at 1.3 dx; the larger figures, linear in h, plus 4 bytes per lattice point.
+double estimated_run_memory(double sph_nodes, double lattice_points, double h_over_dx);
+
+/// The largest Courant number at which the step is stable, measured as the spectral radius of the
+/// full step matrix (<= 1 + 1e-9) on a 12 x 5 block with every boundary type (docs/theory.md
+/// §2.5, tests CourantLimit*): on compact stencils the Lax-Wendroff limit 1 lowered by the
+/// artificial viscosity alpha to sqrt(1 + alpha^2) - alpha (measured 1.013, 0.791, 0.643, 0.433
+/// at alpha = 0, 0.25, 0.5, 1; the formula gives 1, 0.781, 0.618, 0.414); 2D stencils wider than
+/// a cell are stable only up to 0.766 at h = 1.3 dx without viscosity, so they are held to 0.75.
+double stable_courant_limit(double viscosity, bool compact_stencils);
+
 class Simulation final : public Checkpointed {
  public:
-  /// Builds everything; InputError for inconsistent input, RunError for an unusable lattice.
-  explicit Simulation(CaseDescription description);
+  /// Builds everything; InputError for inconsistent input or a case above `limits`, RunError for
+  /// an unusable lattice.
+  explicit Simulation(CaseDescription description, SimulationLimits limits = {});
 
   void add_observer(Observer& observer) { observers_.push_back(&observer); }
   void set_stop_check(StopCheck check) { stop_check_ = std::move(check); }
@@ -79,6 +100,10 @@ class Simulation final : public Checkpointed {
   /// The pressure projection of the saturated model, or null for a dry one.
   const PressureProjection* pressure_projection() const { return projection_.get(); }
   long total_steps() const { return total_steps_; }
+  /// The size estimated from the shapes before the lattice was built.
+  const NodeEstimate& node_estimate() const { return node_estimate_; }
+  /// estimated_run_memory() of the lattice that was built [bytes].
+  double estimated_memory() const;
   double wall_seconds() const { return wall_seconds_; }
 
   /// The state and every other value the next step depends on (the pressure projection's
@@ -90,6 +115,10 @@ class Simulation final : public Checkpointed {
 
  private:
   void initialise_state();
+  /// Where dt comes from, with the values, for messages.
+  std::string time_step_origin(const std::vector<std::string>& material_names) const;
+  /// The step of the run's step `index` (0-based): dt, or what is left to time.end for the last.
+  double step_length(long index) const;
   /// Describes the first value that is not finite or beyond the model's divergence bound (field,
   /// node, position), or returns an empty string.
   std::string find_divergence(const State& state) const;
@@ -106,6 +135,7 @@ class Simulation final : public Checkpointed {
   std::unique_ptr<RkTaylorStep> step_;
   std::unique_ptr<PressureProjection> projection_;
   State state_;
+  NodeEstimate node_estimate_;
   double time_step_ = 0.0;
   long total_steps_ = 0;
   double wall_seconds_ = 0.0;
