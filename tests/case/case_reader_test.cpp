@@ -657,6 +657,26 @@ TEST(CaseOverrides, BadValueIsReportedAgainstTheOverride) {
   EXPECT_EQ(dimension.location().file, "<--set plane=stress>");
 }
 
+TEST(CaseReader, ADirectoryIsNotReportedAsAnEmptyCase) {
+  const std::string directory = std::filesystem::temp_directory_path().string();
+  try {
+    read_case_file(directory);
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.location().file, directory);
+    EXPECT_NE(error.problem().find("is a directory"), std::string::npos) << error.what();
+  }
+}
+
+TEST(CaseReader, AFileThatCannotBeOpenedGivesTheSystemReason) {
+  try {
+    read_case_file((std::filesystem::temp_directory_path() / "rktsph-no-such-case.yaml").string());
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_NE(error.problem().find("No such file or directory"), std::string::npos) << error.what();
+  }
+}
+
 // ------------------------------------------------------------------------------------------------
 // Writing
 
@@ -804,7 +824,7 @@ TEST(CaseReader, EmptyTextIsAnInputError) {
 
 TEST(CaseReader, MissingFileIsAnInputError) {
   try {
-    read_case_file(fixture_path("no-such-case.yaml"));
+    read_case_file((std::filesystem::temp_directory_path() / "rktsph-no-such-case.yaml").string());
     ADD_FAILURE() << "expected an InputError";
   } catch (const InputError& error) {
     EXPECT_EQ(error.location().file, fixture_path("no-such-case.yaml"));

@@ -4,6 +4,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -988,6 +991,35 @@ void emit_output_and_probes(YAML::Emitter& out, const CaseDescription& descripti
   out << YAML::EndSeq;
 }
 
+/// The whole text of the case file. A directory (which an ifstream opens and reads as empty on
+/// Linux) and a file that cannot be read are named as such, with the system's reason.
+std::string read_case_bytes(const std::string& path) {
+  const SourceLocation where{path, 0, 0};
+  std::error_code status_error;
+  const auto status = std::filesystem::status(path, status_error);
+  if (std::filesystem::is_directory(status)) {
+    throw InputError(where, "", "", "this is a directory, not a case file",
+                     "the path of a YAML case file, e.g. " +
+                         (std::filesystem::path(path) / "case.yaml").string());
+  }
+  errno = 0;
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) {
+    const int reason = errno != 0 ? errno : ENOENT;
+    throw InputError(where, "", "",
+                     fmt::format("cannot open the case file: {}", std::strerror(reason)),
+                     "a readable YAML file");
+  }
+  std::ostringstream text;
+  text << stream.rdbuf();
+  if (stream.bad()) {
+    throw InputError(where, "", "",
+                     fmt::format("cannot read the case file: {}", std::strerror(errno)),
+                     "a readable YAML file");
+  }
+  return text.str();
+}
+
 }  // namespace
 
 CaseOverride parse_override(const std::string& text) {
@@ -1010,14 +1042,7 @@ CaseOverride parse_override(const std::string& text) {
 
 CaseDescription read_case_file(const std::string& path,
                                const std::vector<CaseOverride>& overrides) {
-  std::ifstream stream(path);
-  if (!stream) {
-    throw InputError(SourceLocation{path, 0, 0}, "", "", "cannot open the case file",
-                     "a readable YAML file");
-  }
-  std::ostringstream text;
-  text << stream.rdbuf();
-  return read_case_text(text.str(), path, overrides);
+  return read_case_text(read_case_bytes(path), path, overrides);
 }
 
 CaseDescription read_case_text(const std::string& text, const std::string& file_name,
