@@ -824,7 +824,7 @@ TEST(CaseReader, EmptyTextIsAnInputError) {
 
 TEST(CaseReader, MissingFileIsAnInputError) {
   try {
-    read_case_file((std::filesystem::temp_directory_path() / "rktsph-no-such-case.yaml").string());
+    read_case_file(fixture_path("no-such-case.yaml"));
     ADD_FAILURE() << "expected an InputError";
   } catch (const InputError& error) {
     EXPECT_EQ(error.location().file, fixture_path("no-such-case.yaml"));
