@@ -15,6 +15,7 @@
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/core/error.hpp"
 #include "rktsph/driver/run_case.hpp"
+#include "rktsph/output/run_observers.hpp"
 #include "rktsph/simulation/simulation.hpp"
 #include "rktsph/validation/validation_case.hpp"
 
@@ -112,6 +113,7 @@ int command_check(const std::string& case_path, const std::vector<std::string>& 
   const CaseDescription description = read_case_file(case_path, parse_overrides(sets));
   // Building the simulation checks materials, groups, boundary conditions and stencils too.
   const Simulation simulation(description);
+  check_probes(simulation);  // what the run's probe recorder would refuse
   std::cout << fmt::format("{}: OK ({} SPH nodes, {} stress points, dt = {:.4g} s, {} steps)\n",
                            case_path, simulation.nodes().sph_nodes.size(),
                            simulation.nodes().stress_points.size(), simulation.time_step(),

@@ -435,6 +435,8 @@ void YamlMap::allow_only(std::initializer_list<std::string_view> allowed) const 
 }
 
 void YamlMap::allow_only(const std::vector<std::string>& allowed) const {
+  // Every unknown key of the map is reported, not only the first.
+  std::vector<InputError> unknown;
   for (const YamlNode& child : node_.children) {
     if (std::find(allowed.begin(), allowed.end(), child.key) != allowed.end()) continue;
     const std::string suggestion = closest_match(child.key, allowed);
@@ -443,15 +445,17 @@ void YamlMap::allow_only(const std::vector<std::string>& allowed) const {
     const std::string where_text =
         node_.path.empty() ? "at the top level" : fmt::format("in '{}'", node_.path);
     if (child.key_from_override) {
-      throw InputError(SourceLocation{"<--set>", 0, 0}, child.path, child.override_text,
-                       fmt::format("the --set path does not exist: no key '{}' {}{}", child.key,
-                                   where_text, hint),
-                       quoted_list(allowed));
+      unknown.emplace_back(SourceLocation{"<--set>", 0, 0}, child.path, child.override_text,
+                           fmt::format("the --set path does not exist: no key '{}' {}{}", child.key,
+                                       where_text, hint),
+                           quoted_list(allowed));
+    } else {
+      unknown.emplace_back(child.key_where, child.path, child.key,
+                           fmt::format("unknown key '{}' {}{}", child.key, where_text, hint),
+                           quoted_list(allowed));
     }
-    throw InputError(child.key_where, child.path, child.key,
-                     fmt::format("unknown key '{}' {}{}", child.key, where_text, hint),
-                     quoted_list(allowed));
   }
+  if (!unknown.empty()) throw InputError::combine(std::move(unknown));
 }
 
 const YamlNode& YamlMap::require(std::string_view key) const {

@@ -76,6 +76,36 @@ void check_vertices_on_lattice(const GeometrySpec& geometry, int dimension, cons
       }
 }
 
+/// A point group picks its nearest node; a point more than half a spacing (along some axis) from
+/// every node lies outside the body or in a hole, and snapping it would silently move it.
+void refuse_point_off_the_body(const NodeSets& nodes, const GroupSpec& group, std::size_t nearest) {
+  const PointCloud& points = nodes.sph_nodes;
+  const double half = 0.5 * nodes.spacing * (1.0 + kLatticeTolerance);
+  double distance_squared = 0.0;
+  bool within = true;
+  for (int a = 0; a < nodes.dimension; ++a) {
+    const double offset = points.position[a][nearest] - group.point[a];
+    distance_squared += offset * offset;
+    if (std::abs(offset) > half) within = false;
+  }
+  if (within) return;
+  const auto coordinates = [&](auto&& coordinate) {
+    std::string text;
+    for (int a = 0; a < nodes.dimension; ++a)
+      text += fmt::format("{}{}", a > 0 ? ", " : "", coordinate(a));
+    return nodes.dimension == 1 ? text : "[" + text + "]";
+  };
+  throw InputError(
+      group.where, "groups." + group.name + ".point",
+      coordinates([&](int a) { return group.point[a]; }),
+      fmt::format("the point is {:.6g} m from the nearest node (at {}), more than half a spacing "
+                  "(dx/2 = {:.6g} m) along an axis: it lies outside the body",
+                  std::sqrt(distance_squared),
+                  coordinates([&](int a) { return points.position[a][nearest]; }),
+                  0.5 * nodes.spacing),
+      "a point within half a spacing, along every axis, of a node of the body");
+}
+
 }  // namespace
 
 bool polygon_contains(const std::vector<Vec3>& vertices, double x, double y, double tolerance) {
@@ -249,6 +279,7 @@ std::map<std::string, std::vector<std::int32_t>> select_groups(
             nearest = i;
           }
         }
+        refuse_point_off_the_body(nodes, group, nearest);
         members = {static_cast<std::int32_t>(nearest)};
         break;
       }
