@@ -722,6 +722,15 @@ TEST(CaseReader, EveryUnknownKeyOfAMapIsReported) {
   EXPECT_EQ(all[1].key(), "time.max_step");
 }
 
+TEST(CaseReader, AnUnknownKeyDoesNotHideABadValueBesideIt) {
+  std::string text = read_fixture("bar1d_minimal.yaml");
+  text = replace_once(text, "time:\n  end: 0.36", "time:\n  end: -1\n  ned: 1");
+  const std::vector<InputError> all = read_error(text).errors();
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[0].key(), "time.end");
+  EXPECT_EQ(all[1].key(), "time.ned");
+}
+
 TEST(CaseReader, AReportListsAtMostTwentyMistakesAndCountsTheRest) {
   std::string text = read_fixture("bar1d_minimal.yaml");
   for (int i = 0; i < 25; ++i)

@@ -502,7 +502,7 @@ BoundaryConditionSpec CaseReader::read_boundary_condition(const YamlNode& node) 
 
 void CaseReader::read_loads(const YamlNode& node) {
   const YamlMap loads(node);
-  loads.allow_only({"gravity", "damping"});
+  attempt([&] { loads.allow_only({"gravity", "damping"}); });
   if (const YamlNode* gravity = loads.find("gravity")) out_.gravity = read_gravity(*gravity);
   if (const YamlNode* damping = loads.find("damping")) out_.damping = read_damping(*damping);
 }
@@ -536,7 +536,7 @@ DampingSpec CaseReader::read_damping(const YamlNode& node) const {
 
 void CaseReader::read_initial_conditions(const YamlNode& node) {
   const YamlMap initial(node);
-  initial.allow_only({"velocity", "geostatic"});
+  attempt([&] { initial.allow_only({"velocity", "geostatic"}); });
   out_.initial.where = initial.where();
   if (const YamlNode* velocity = initial.find("velocity")) {
     out_.initial.velocity = read_vector(*velocity);
@@ -553,9 +553,11 @@ void CaseReader::read_initial_conditions(const YamlNode& node) {
 
 void CaseReader::read_numerics(const YamlNode& node) {
   const YamlMap map(node);
-  map.allow_only({"kernel", "h_over_dx", "interpolation_order", "courant", "time_step",
-                  "source_coupling", "rk_substep_factor", "rk_max_substeps", "hourglass",
-                  "artificial_viscosity"});
+  attempt([&] {
+    map.allow_only({"kernel", "h_over_dx", "interpolation_order", "courant", "time_step",
+                    "source_coupling", "rk_substep_factor", "rk_max_substeps", "hourglass",
+                    "artificial_viscosity"});
+  });
   NumericsSpec& numerics = out_.numerics;
   numerics.where = map.where();
   if (const YamlNode* kernel = map.find("kernel")) {
@@ -616,9 +618,11 @@ void CaseReader::read_numerics(const YamlNode& node) {
 
 void CaseReader::read_pore_fluid(const YamlNode& node) {
   const YamlMap map(node);
-  map.allow_only({"bulk_modulus", "density", "porosity", "hydraulic_conductivity", "gravity",
-                  "biot_coefficient", "projection_beta", "preconditioner", "solver_tolerance",
-                  "solver_max_iterations", "laplacian_scale", "checkerboard_stabilisation"});
+  attempt([&] {
+    map.allow_only({"bulk_modulus", "density", "porosity", "hydraulic_conductivity", "gravity",
+                    "biot_coefficient", "projection_beta", "preconditioner", "solver_tolerance",
+                    "solver_max_iterations", "laplacian_scale", "checkerboard_stabilisation"});
+  });
   PoreFluidSpec fluid;
   fluid.where = map.where();
   fluid.bulk_modulus = to_number(map.require("bulk_modulus"), NumberRange::positive());
@@ -663,7 +667,7 @@ void CaseReader::read_pore_fluid(const YamlNode& node) {
 
 void CaseReader::read_time(const YamlNode& node) {
   const YamlMap time(node);
-  time.allow_only({"end", "max_steps"});
+  attempt([&] { time.allow_only({"end", "max_steps"}); });
   out_.time.where = time.where();
   out_.time.end = to_number(time.require("end"), NumberRange::positive());
   if (const YamlNode* steps = time.find("max_steps")) {
@@ -673,7 +677,7 @@ void CaseReader::read_time(const YamlNode& node) {
 
 void CaseReader::read_output(const YamlNode& node) {
   const YamlMap output(node);
-  output.allow_only({"interval", "probe_interval", "fields"});
+  attempt([&] { output.allow_only({"interval", "probe_interval", "fields"}); });
   out_.output.where = output.where();
   if (const YamlNode* interval = output.find("interval")) {
     out_.output.interval = to_number(*interval, NumberRange::non_negative());

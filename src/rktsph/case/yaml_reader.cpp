@@ -434,32 +434,43 @@ void YamlMap::allow_only(std::initializer_list<std::string_view> allowed) const 
   allow_only(std::vector<std::string>(allowed.begin(), allowed.end()));
 }
 
+InputError YamlMap::unknown_key_error(const YamlNode& child) const {
+  const std::string suggestion = closest_match(child.key, allowed_);
+  const std::string hint =
+      suggestion.empty() ? "" : fmt::format("; did you mean '{}'?", suggestion);
+  const std::string where_text =
+      node_.path.empty() ? "at the top level" : fmt::format("in '{}'", node_.path);
+  if (child.key_from_override) {
+    return InputError(
+        SourceLocation{"<--set>", 0, 0}, child.path, child.override_text,
+        fmt::format("the --set path does not exist: no key '{}' {}{}", child.key, where_text, hint),
+        quoted_list(allowed_));
+  }
+  return InputError(child.key_where, child.path, child.key,
+                    fmt::format("unknown key '{}' {}{}", child.key, where_text, hint),
+                    quoted_list(allowed_));
+}
+
 void YamlMap::allow_only(const std::vector<std::string>& allowed) const {
+  allowed_ = allowed;
   // Every unknown key of the map is reported, not only the first.
   std::vector<InputError> unknown;
   for (const YamlNode& child : node_.children) {
-    if (std::find(allowed.begin(), allowed.end(), child.key) != allowed.end()) continue;
-    const std::string suggestion = closest_match(child.key, allowed);
-    const std::string hint =
-        suggestion.empty() ? "" : fmt::format("; did you mean '{}'?", suggestion);
-    const std::string where_text =
-        node_.path.empty() ? "at the top level" : fmt::format("in '{}'", node_.path);
-    if (child.key_from_override) {
-      unknown.emplace_back(SourceLocation{"<--set>", 0, 0}, child.path, child.override_text,
-                           fmt::format("the --set path does not exist: no key '{}' {}{}", child.key,
-                                       where_text, hint),
-                           quoted_list(allowed));
-    } else {
-      unknown.emplace_back(child.key_where, child.path, child.key,
-                           fmt::format("unknown key '{}' {}{}", child.key, where_text, hint),
-                           quoted_list(allowed));
-    }
+    if (std::find(allowed.begin(), allowed.end(), child.key) == allowed.end())
+      unknown.push_back(unknown_key_error(child));
   }
   if (!unknown.empty()) throw InputError::combine(std::move(unknown));
 }
 
 const YamlNode& YamlMap::require(std::string_view key) const {
   if (const YamlNode* value = find(key)) return *value;
+  // A required key that is missing because it was misspelt is one mistake, not two: the
+  // misspelling is reported (InputError::combine drops the copy allow_only reported).
+  for (const YamlNode& child : node_.children) {
+    const bool unknown = std::find(allowed_.begin(), allowed_.end(), child.key) == allowed_.end();
+    if (unknown && !allowed_.empty() && closest_match(child.key, allowed_) == key)
+      throw unknown_key_error(child);
+  }
   throw InputError(where(), child_path(node_.path, std::string(key)), "",
                    fmt::format("missing required key '{}'", key),
                    fmt::format("add '{}:' to {}", key,

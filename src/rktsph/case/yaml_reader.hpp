@@ -109,7 +109,12 @@ class YamlMap {
   const YamlNode& require_one_of(const std::vector<std::string>& keys) const;
 
  private:
+  InputError unknown_key_error(const YamlNode& child) const;
+
   const YamlNode& node_;
+  /// The keys given to allow_only, if it was called: require() uses them to tell a misspelt
+  /// required key from a missing one.
+  mutable std::vector<std::string> allowed_;
 };
 
 // Typed scalar reads. Each throws an InputError at the value (wrong type or out of range).

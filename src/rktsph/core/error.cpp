@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <string_view>
 
 namespace rktsph {
 
@@ -38,7 +39,7 @@ InputError::InputError(SourceLocation location, std::string key, std::string val
 
 namespace {
 /// Case-file errors come first, by line and column; errors of --set arguments (whose location is
-/// "<--set ...>") after them, in the order the arguments were given (the sort is stable).
+/// "<--set ...>") after them, in the order they were found (the sort is stable).
 bool earlier_in_file(const InputError& a, const InputError& b) {
   const auto rank = [](const InputError& e) { return e.location().file.rfind("<--set", 0) == 0; };
   if (rank(a) != rank(b)) return rank(a) < rank(b);
@@ -53,6 +54,11 @@ InputError InputError::combine(std::vector<InputError> errors) {
     for (InputError& single : error.errors())
       flat.push_back(std::move(single));
   std::stable_sort(flat.begin(), flat.end(), earlier_in_file);
+  // One mistake found twice (an unknown key, and the required key it misspells) is listed once.
+  const auto same = [](const InputError& a, const InputError& b) {
+    return std::string_view(a.what()) == b.what();
+  };
+  flat.erase(std::unique(flat.begin(), flat.end(), same), flat.end());
   if (flat.size() == 1) return flat.front();
   InputError result = flat.front();
   std::string message = fmt::format("{} errors:", flat.size());

@@ -34,7 +34,7 @@ class InputError : public std::runtime_error {
              std::string allowed);
 
   /// Several independent mistakes as one error, like a compiler's report: sorted into file order
-  /// (case-file lines first, then --set arguments in the order given), each on its own line of
+  /// (case-file lines first, then the errors of --set arguments), each on its own line of
   /// what(), at most kMaxReportedInputErrors of them. location(), key() and the other accessors
   /// describe the first. Errors that are themselves combined are flattened; one error is returned
   /// as it is. `errors` must not be empty.
