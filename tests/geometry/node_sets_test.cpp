@@ -99,6 +99,21 @@ TEST(NodeSets, VertexOffTheLatticeIsAnInputError) {
   }
 }
 
+TEST(NodeSets, ShapeThinnerThanOneSpacingIsAnInputError) {
+  GeometrySpec geometry;
+  geometry.spacing = 1.0;
+  // 1e-308 rounds to the lattice line x = 0: on the lattice, but no cell wide.
+  geometry.shapes = {rectangle(0.0, 0.0, 1e-308, 4.0, "soil")};
+  geometry.shapes[0].where = {"case.yaml", 5, 5};
+  try {
+    build_node_sets(geometry, 2, {"soil"});
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.location().line, 5);
+    EXPECT_NE(error.problem().find("less than one spacing"), std::string::npos) << error.what();
+  }
+}
+
 TEST(NodeGroups, EdgesBoxesPolygonsAndPoints) {
   GeometrySpec geometry;
   geometry.spacing = 1.0;

@@ -74,6 +74,19 @@ void check_vertices_on_lattice(const GeometrySpec& geometry, int dimension, cons
               "coordinates that differ from the smallest coordinate of all shapes by "
               "a whole number of spacings");
       }
+  // A segment or rectangle thinner than a spacing passes the test above (its vertices round to
+  // one lattice line) but has no cell, so nothing would move its nodes.
+  for (const ShapeSpec& shape : geometry.shapes) {
+    if (shape.kind == ShapeSpec::Kind::Polygon) continue;
+    for (int a = 0; a < dimension; ++a) {
+      const double width = shape.vertices[1][a] - shape.vertices[0][a];
+      if (std::round(width / dx) >= 1.0) continue;  // (lround of an overflowing ratio is UB)
+      throw InputError(shape.where, "geometry.shapes", fmt::format("{}", width),
+                       fmt::format("the shape is {} m wide along {}, less than one spacing ({})",
+                                   width, a == 0 ? "x" : "y", dx),
+                       "shapes at least one spacing wide along every axis");
+    }
+  }
 }
 
 /// A point group picks its nearest node; a point more than half a spacing (along some axis) from
