@@ -307,6 +307,65 @@ TEST(CommandLine, OverrideErrorsAreReported) {
   EXPECT_EQ(run("check " + path.string() + " --set time.end=0.02").status, 0);
 }
 
+TEST(CommandLine, MisspeltProbeFieldFromSetIsRefusedByCheckNamingTheArgument) {
+  const fs::path path = write_case("probe.yaml", kBar);
+  const Result result = run("check " + path.string() + " --set probes.0.fields.0=velocty_x");
+  EXPECT_EQ(result.status, 2) << result.output;
+  EXPECT_NE(result.output.find("<--set probes.0.fields.0=velocty_x>: error: key "
+                               "'probes.0.fields.0': unknown probe field; did you mean "
+                               "'velocity_x'?"),
+            std::string::npos)
+      << result.output;
+  EXPECT_EQ(result.output.find(path.string()), std::string::npos) << result.output;
+}
+
+TEST(CommandLine, MisspeltProbeFieldInTheFileIsRefusedByCheckAtItsLine) {
+  const fs::path path = write_case(
+      "probe-line.yaml", replaced(kBar, "fields: [velocity_x]", "fields: [velocity_x, strss]"));
+  const Result result = run("check " + path.string());
+  EXPECT_EQ(result.status, 2) << result.output;
+  EXPECT_NE(result.output.find(path.string() + ":16:"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("'probes.0.fields.1'"), std::string::npos) << result.output;
+}
+
+TEST(CommandLine, ADirectoryAsCaseFileIsNamedAsSuch) {
+  const Result result = run("check " + scratch("").string());
+  EXPECT_EQ(result.status, 2);
+  EXPECT_NE(result.output.find("is a directory"), std::string::npos) << result.output;
+}
+
+TEST(CommandLine, ThreeMistakesAreReportedInOnePassInLineOrder) {
+  std::string text = replaced(kBar, "poisson_ratio: 0.0", "poisson_ratio: zero");
+  text = replaced(text, "spacing: 0.5", "spacing: -0.5");
+  text = replaced(text, "courant: 0.9", "courant: 9");
+  const fs::path path = write_case("three.yaml", text);
+  const Result result = run("check " + path.string());
+  EXPECT_EQ(result.status, 2);
+  const std::size_t first = result.output.find(path.string() + ":4:");
+  const std::size_t second = result.output.find(path.string() + ":9:");
+  const std::size_t third = result.output.find(path.string() + ":12:");
+  EXPECT_NE(third, std::string::npos) << result.output;
+  EXPECT_LT(first, second) << result.output;
+  EXPECT_LT(second, third) << result.output;
+  EXPECT_NE(result.output.find("3 errors:"), std::string::npos) << result.output;
+}
+
+TEST(CommandLine, NestedAliasesAreRefusedQuickly) {
+  std::string text = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int level = 1; level < 10; ++level) {
+    const std::string name = std::to_string(level), previous = std::to_string(level - 1);
+    text.append("a").append(name).append(": &a").append(name).append(" [");
+    for (int i = 0; i < 10; ++i)
+      text.append(i > 0 ? ", *a" : "*a").append(previous);
+    text.append("]\n");
+  }
+  const fs::path path = write_case("bomb.yaml", text + "name: *a9\n");
+  const Result result = run("check " + path.string());
+  EXPECT_EQ(result.status, 2);
+  EXPECT_NE(result.output.find(path.string() + ":5:"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("more than 100000 values"), std::string::npos) << result.output;
+}
+
 TEST(CommandLine, RunWritesAReadableSeriesProbesAndSummary) {
   const fs::path out = scratch("run");
   const Result result =

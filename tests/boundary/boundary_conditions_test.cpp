@@ -79,5 +79,50 @@ TEST(BoundaryConditions, RollerOffAPlaneIsAnError) {
   EXPECT_THROW(Simulation(read_case_text(text, "block.yaml")), InputError);
 }
 
+/// kBlock with one more boundary condition at the end of the list (line 15).
+std::string block_with(const std::string& condition) {
+  std::string text = kBlock;
+  const std::string last = "  - {group: footing, traction: {y: -1000.0}}\n";
+  text.replace(text.find(last), last.size(), last + "  - " + condition + "\n");
+  return text;
+}
+
+TEST(BoundaryConditions, TwoDifferentVelocitiesOnOneNodeAndComponentAreRefused) {
+  // xmin is fixed (line 12); a velocity along x on it contradicts that.
+  try {
+    Simulation(read_case_text(block_with("{group: xmin, velocity: {x: 0.1}}"), "block.yaml"));
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.location().line, 15);
+    EXPECT_NE(error.problem().find("'fixed' condition on group 'xmin' at block.yaml:12"),
+              std::string::npos)
+        << error.what();
+    EXPECT_NE(error.problem().find("different velocities along x"), std::string::npos);
+  }
+}
+
+TEST(BoundaryConditions, TractionAndVelocityOnTheSameFaceAndComponentAreRefused) {
+  try {
+    // The footing moved off the fixed left face, so that only the traction is in the way.
+    std::string text = block_with("{group: footing, velocity: {y: -0.01}}");
+    const std::string footing = "box: {min: [0, 4], max: [2, 4]}";
+    text.replace(text.find(footing), footing.size(), "box: {min: [1, 4], max: [2, 4]}");
+    Simulation(read_case_text(text, "block.yaml"));
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.location().line, 14);  // the traction, which would be dropped
+    EXPECT_NE(error.problem().find("'velocity' condition on group 'footing' at block.yaml:15"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+TEST(BoundaryConditions, EqualImposedVelocitiesMayOverlap) {
+  // The fixed left face and the bottom roller share the corner (0, 0): both impose zero there.
+  EXPECT_NO_THROW(Simulation(read_case_text(kBlock, "block.yaml")));
+  EXPECT_NO_THROW(
+      Simulation(read_case_text(block_with("{group: xmin, velocity: {x: 0}}"), "block.yaml")));
+}
+
 }  // namespace
 }  // namespace rktsph

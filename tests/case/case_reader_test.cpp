@@ -63,6 +63,12 @@ Position position_of(const std::string& text, const std::string& needle) {
   return position;
 }
 
+/// How the reader names a polygon edge in its messages.
+std::string fmt_edge(int index, const std::string& from, const std::string& to, int line) {
+  return "edge " + std::to_string(index) + " (" + from + " to " + to + ", line " +
+         std::to_string(line) + ")";
+}
+
 InputError read_error(const std::string& text, const std::vector<CaseOverride>& overrides = {}) {
   try {
     read_case_text(text, kFile, overrides);
@@ -655,6 +661,158 @@ TEST(CaseOverrides, BadValueIsReportedAgainstTheOverride) {
   EXPECT_EQ(syntax.location().file, "<--set geometry.spacing=[1>");
   const InputError dimension = read_error(base, {parse_override("plane=stress")});
   EXPECT_EQ(dimension.location().file, "<--set plane=stress>");
+}
+
+TEST(CaseReader, ADirectoryIsNotReportedAsAnEmptyCase) {
+  const std::string directory = std::filesystem::temp_directory_path().string();
+  try {
+    read_case_file(directory);
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.location().file, directory);
+    EXPECT_NE(error.problem().find("is a directory"), std::string::npos) << error.what();
+  }
+}
+
+TEST(CaseReader, AFileThatCannotBeOpenedGivesTheSystemReason) {
+  try {
+    read_case_file((std::filesystem::temp_directory_path() / "rktsph-no-such-case.yaml").string());
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_NE(error.problem().find("No such file or directory"), std::string::npos) << error.what();
+  }
+}
+
+// ------------------------------------------------------------------------------------------------
+// Several mistakes in one pass
+
+TEST(CaseReader, SeveralMistakesAreReportedTogetherInFileOrder) {
+  // Read in the order materials, geometry, time; written geometry (line 5) first.
+  std::string text = read_fixture("bar1d_minimal.yaml");
+  text = replace_once(text, "young_modulus: 1.0e8", "young_modulus: stiff");
+  text = replace_once(text, "spacing: 0.5", "spacing: -0.5");
+  text = replace_once(text, "end: 0.36", "end: 0");
+  const InputError error = read_error(text);
+  const std::vector<InputError> all = error.errors();
+  ASSERT_EQ(all.size(), 3u) << error.what();
+  EXPECT_EQ(all[0].key(), "geometry.spacing");
+  EXPECT_EQ(all[0].location().line, position_of(text, "-0.5").line);
+  EXPECT_EQ(all[1].key(), "materials.soil.young_modulus");
+  EXPECT_EQ(all[1].location().line, position_of(text, "stiff").line);
+  EXPECT_EQ(all[2].key(), "time.end");
+  EXPECT_EQ(all[2].location().line, position_of(text, "end: 0").line);
+  // The error itself is the first; its message lists all three, one per line, in that order.
+  EXPECT_EQ(error.key(), "geometry.spacing");
+  const std::string message = error.what();
+  EXPECT_EQ(message.rfind("3 errors:\n", 0), 0u) << message;
+  const std::size_t spacing = message.find("geometry.spacing");
+  const std::size_t modulus = message.find("young_modulus");
+  const std::size_t end = message.find("time.end");
+  EXPECT_LT(spacing, modulus);
+  EXPECT_LT(modulus, end);
+  EXPECT_NE(end, std::string::npos);
+}
+
+TEST(CaseReader, EveryUnknownKeyOfAMapIsReported) {
+  std::string text = read_fixture("bar1d_minimal.yaml");
+  text = replace_once(text, "time:\n  end: 0.36", "time:\n  end: 0.36\n  ned: 1\n  max_step: 5");
+  const std::vector<InputError> all = read_error(text).errors();
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[0].key(), "time.ned");
+  EXPECT_EQ(all[1].key(), "time.max_step");
+}
+
+TEST(CaseReader, AnUnknownKeyDoesNotHideABadValueBesideIt) {
+  std::string text = read_fixture("bar1d_minimal.yaml");
+  text = replace_once(text, "time:\n  end: 0.36", "time:\n  end: -1\n  ned: 1");
+  const std::vector<InputError> all = read_error(text).errors();
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[0].key(), "time.end");
+  EXPECT_EQ(all[1].key(), "time.ned");
+}
+
+TEST(CaseReader, AReportListsAtMostTwentyMistakesAndCountsTheRest) {
+  std::string text = read_fixture("bar1d_minimal.yaml");
+  for (int i = 0; i < 25; ++i)
+    text += "unknown_" + std::to_string(i) + ": 1\n";
+  const InputError error = read_error(text);
+  EXPECT_EQ(error.errors().size(), 25u);
+  const std::string message = error.what();
+  EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 21) << message;
+  EXPECT_NE(message.find("\nand 5 more"), std::string::npos) << message;
+  EXPECT_NE(message.find("unknown_19"), std::string::npos);
+  EXPECT_EQ(message.find("unknown_20"), std::string::npos);
+}
+
+TEST(CaseReader, AGroupInErrorIsNotReportedAgainWhereItIsUsed) {
+  std::string text = read_fixture("rich2d.yaml");
+  text = replace_once(text, "crest: {point: [5.0, 15.0]}", "crest: {point: [5.0, high]}");
+  const std::vector<InputError> all = read_error(text).errors();
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_EQ(all[0].location().line, position_of(text, "high").line);
+}
+
+TEST(CaseOverrides, ErrorsOfSetArgumentsFollowTheFileAndNameTheArgument) {
+  std::string text = read_fixture("bar1d_minimal.yaml");
+  text = replace_once(text, "spacing: 0.5", "spacing: -0.5");
+  const InputError error = read_error(text, {parse_override("time.end=-1")});
+  const std::vector<InputError> all = error.errors();
+  ASSERT_EQ(all.size(), 2u) << error.what();
+  EXPECT_EQ(all[0].location().file, kFile);
+  EXPECT_EQ(all[1].location().file, "<--set time.end=-1>");
+  EXPECT_NE(std::string(error.what()).find("<--set time.end=-1>: error: key 'time.end'"),
+            std::string::npos)
+      << error.what();
+}
+
+TEST(CaseOverrides, AProbeFieldKeepsTheLocationOfItsSetArgument) {
+  const std::string base = read_fixture("rich2d.yaml");
+  const CaseDescription description =
+      read_case_text(base, kFile, {parse_override("probes.0.fields.1=strss")});
+  ASSERT_EQ(description.probes[0].field_where.size(), 2u);
+  EXPECT_EQ(description.probes[0].field_where[0].line, position_of(base, "stress_xx").line);
+  EXPECT_EQ(description.probes[0].field_where[1].file, "<--set probes.0.fields.1=strss>");
+  EXPECT_EQ(description.probes[0].path, "probes.0");
+}
+
+// ------------------------------------------------------------------------------------------------
+// Polygons
+
+TEST(CaseReader, SelfIntersectingPolygonIsRefusedNamingTheCrossingEdges) {
+  const std::string base = read_fixture("rich2d.yaml");
+  // Non-zero area (150), but edge 1 ([20, 0] to [0, 15]) crosses edge 3 ([10, 15] to [0, 0]).
+  const std::string text =
+      replace_once(base, "polygon: [[0, 0], [20, 0], [20, 10], [10, 10], [10, 15], [0, 15]]",
+                   "polygon: [[0, 0], [20, 0], [0, 15], [10, 15]]");
+  const InputError error = read_error(text);
+  EXPECT_EQ(error.key(), "geometry.shapes.0.polygon");
+  const int line = position_of(text, "[[0, 0], [20, 0], [0, 15]").line;
+  EXPECT_EQ(error.location().line, line);
+  EXPECT_NE(error.problem().find("intersects itself"), std::string::npos) << error.what();
+  EXPECT_NE(error.problem().find(fmt_edge(1, "[20, 0]", "[0, 15]", line)), std::string::npos)
+      << error.what();
+  EXPECT_NE(error.problem().find(fmt_edge(3, "[10, 15]", "[0, 0]", line)), std::string::npos)
+      << error.what();
+}
+
+TEST(CaseReader, PolygonGroupThatFoldsBackOnItselfIsRefused) {
+  const std::string base = read_fixture("rich2d.yaml");
+  // Edges 0 and 1 run along one line and overlap: zero width there, non-zero area elsewhere.
+  const std::string text = replace_once(base, "zone: {polygon: [[0, 0], [1, 0], [0, 1]]}",
+                                        "zone: {polygon: [[0, 0], [2, 0], [1, 0], [0, 1]]}");
+  const InputError error = read_error(text);
+  EXPECT_EQ(error.key(), "groups.zone.polygon");
+  EXPECT_NE(error.problem().find("intersects itself"), std::string::npos) << error.what();
+}
+
+TEST(CaseReader, PolygonWithARepeatedVertexIsRefused) {
+  const std::string base = read_fixture("rich2d.yaml");
+  const std::string text =
+      replace_once(base, "polygon: [[0, 0], [20, 0], [20, 10], [10, 10], [10, 15], [0, 15]]",
+                   "polygon: [[0, 0], [20, 0], [20, 10], [20, 0], [10, 15], [0, 15]]");
+  const InputError error = read_error(text);
+  EXPECT_EQ(error.key(), "geometry.shapes.0.polygon.3");
+  EXPECT_NE(error.problem().find("vertex 3 repeats vertex 1"), std::string::npos) << error.what();
 }
 
 // ------------------------------------------------------------------------------------------------

@@ -229,5 +229,53 @@ TEST(YamlReader, RenderValueIsShortAndFlow) {
   EXPECT_EQ(render_value(*root.find("a")), "{min: [0, 0], max: [1, 2]}");
 }
 
+/// "Billion laughs": ten levels of ten aliases each, 10^10 values once expanded, in under 1 KB.
+std::string nested_alias_document() {
+  std::string text = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int level = 1; level < 10; ++level) {
+    const std::string name = std::to_string(level);
+    text.append("a").append(name).append(": &a").append(name).append(" [");
+    for (int i = 0; i < 10; ++i)
+      text.append(i > 0 ? ", *a" : "*a").append(std::to_string(level - 1));
+    text += "]\n";
+  }
+  return text + "name: *a9\n";
+}
+
+TEST(YamlReader, NestedAliasesAreRefusedBeforeTheyAreExpanded) {
+  const std::string text = nested_alias_document();
+  ASSERT_LT(text.size(), 1024u);
+  const InputError error = catch_input_error([&] { parse_yaml(text, "bomb.yaml"); });
+  EXPECT_EQ(error.location().file, "bomb.yaml");
+  // a4 is the first key whose expanded value (10^5 + 1 values) passes the limit of 10^5.
+  EXPECT_EQ(error.location().line, 5);
+  EXPECT_EQ(error.key(), "a4");
+  EXPECT_NE(error.problem().find("more than 100000 values"), std::string::npos) << error.what();
+  EXPECT_NE(error.allowed().find("at most 100000"), std::string::npos);
+}
+
+TEST(YamlReader, AliasesWithinTheLimitAreExpanded) {
+  const YamlNode root = parse_yaml("base: &b {density: 2000}\ncopy: *b\n", "a.yaml");
+  const YamlNode* copy = root.find("copy");
+  ASSERT_NE(copy, nullptr);
+  ASSERT_NE(copy->find("density"), nullptr);
+  EXPECT_EQ(copy->find("density")->text, "2000");
+  EXPECT_EQ(copy->find("density")->path, "copy.density");
+}
+
+TEST(YamlOverride, NestedAliasesInASetValueAreRefused) {
+  YamlNode root = parse_yaml("a: 1\n", "f.yaml");
+  std::string flow = "[&x0 [y, y, y, y, y, y, y, y, y, y]";
+  for (int level = 1; level < 6; ++level) {
+    flow.append(", &x").append(std::to_string(level)).append(" [");
+    for (int i = 0; i < 10; ++i)
+      flow.append(i > 0 ? ", *x" : "*x").append(std::to_string(level - 1));
+    flow += "]";
+  }
+  flow += "]";
+  const InputError error = catch_input_error([&] { apply_override(root, "a", flow); });
+  EXPECT_EQ(error.location().file.rfind("<--set a=", 0), 0u) << error.what();
+}
+
 }  // namespace
 }  // namespace rktsph

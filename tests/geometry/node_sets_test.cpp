@@ -99,6 +99,21 @@ TEST(NodeSets, VertexOffTheLatticeIsAnInputError) {
   }
 }
 
+TEST(NodeSets, ShapeThinnerThanOneSpacingIsAnInputError) {
+  GeometrySpec geometry;
+  geometry.spacing = 1.0;
+  // 1e-308 rounds to the lattice line x = 0: on the lattice, but no cell wide.
+  geometry.shapes = {rectangle(0.0, 0.0, 1e-308, 4.0, "soil")};
+  geometry.shapes[0].where = {"case.yaml", 5, 5};
+  try {
+    build_node_sets(geometry, 2, {"soil"});
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.location().line, 5);
+    EXPECT_NE(error.problem().find("less than one spacing"), std::string::npos) << error.what();
+  }
+}
+
 TEST(NodeGroups, EdgesBoxesPolygonsAndPoints) {
   GeometrySpec geometry;
   geometry.spacing = 1.0;
@@ -141,6 +156,35 @@ TEST(NodeGroups, EmptySelectionIsAnInputErrorAtTheGroup) {
   outside.max = {30.0, 30.0, 0.0};
   outside.where = {"case.yaml", 12, 3};
   EXPECT_THROW(select_groups(nodes, {outside}), InputError);
+}
+
+TEST(NodeGroups, PointFartherThanHalfASpacingFromEveryNodeIsRefused) {
+  GeometrySpec geometry;
+  geometry.spacing = 1.0;
+  geometry.shapes = {rectangle(0.0, 0.0, 10.0, 4.0, "soil")};
+  const NodeSets nodes = build_node_sets(geometry, 2, {"soil"});
+  GroupSpec point;
+  point.name = "far";
+  point.kind = GroupSpec::Kind::Point;
+  point.where = {"case.yaml", 7, 3};
+  // A cell centre is half a spacing from its corner nodes along each axis: still in the body.
+  point.point = {5.5, 2.5, 0.0};
+  EXPECT_EQ(select_groups(nodes, {point}).at("far").size(), 1u);
+  // Beyond the right edge x = 10 by 5 spacings.
+  point.point = {15.0, 2.0, 0.0};
+  try {
+    select_groups(nodes, {point});
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.location().line, 7);
+    EXPECT_EQ(error.key(), "groups.far.point");
+    EXPECT_EQ(error.value(), "[15, 2]");
+    EXPECT_NE(error.problem().find("5 m from the nearest node (at [10, 2])"), std::string::npos)
+        << error.what();
+  }
+  // Just over half a spacing along one axis.
+  point.point = {10.6, 2.0, 0.0};
+  EXPECT_THROW(select_groups(nodes, {point}), InputError);
 }
 
 }  // namespace

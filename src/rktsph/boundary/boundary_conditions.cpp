@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace rktsph {
 
@@ -38,6 +39,93 @@ std::vector<FaceNormal> common_normals(const std::vector<std::vector<FaceNormal>
   }
   return common;
 }
+bool same_function(const TimeFunction& a, const TimeFunction& b) {
+  return a.kind == b.kind && a.value == b.value && a.start == b.start && a.duration == b.duration &&
+         a.table == b.table && a.amplitude == b.amplitude && a.period == b.period &&
+         a.phase == b.phase && a.offset == b.offset;
+}
+
+std::string kind_name(const BoundaryConditionSpec& condition) {
+  switch (condition.kind) {
+    case BoundaryConditionSpec::Kind::Velocity:
+      return "velocity";
+    case BoundaryConditionSpec::Kind::Fixed:
+      return "fixed";
+    case BoundaryConditionSpec::Kind::Roller:
+      return "roller";
+    case BoundaryConditionSpec::Kind::Traction:
+      return "traction";
+    case BoundaryConditionSpec::Kind::PorePressure:
+      break;
+  }
+  return "pore_pressure";
+}
+
+std::string node_text(const NodeSets& nodes, std::int32_t node) {
+  if (nodes.dimension == 1) return fmt::format("{}", nodes.sph_nodes.position[0][node]);
+  return fmt::format("[{}, {}]", nodes.sph_nodes.position[0][node],
+                     nodes.sph_nodes.position[1][node]);
+}
+
+/// The velocity component `axis` that `condition` imposes, or nullopt.
+std::optional<TimeFunction> imposed_velocity(const BoundaryConditionSpec& condition, int axis) {
+  switch (condition.kind) {
+    case BoundaryConditionSpec::Kind::Fixed:
+      return TimeFunction::constant(0.0);
+    case BoundaryConditionSpec::Kind::Roller:
+      if (condition.axis == axis) return TimeFunction::constant(0.0);
+      return std::nullopt;
+    case BoundaryConditionSpec::Kind::Velocity:
+      return condition.velocity[static_cast<std::size_t>(axis)];
+    default:
+      return std::nullopt;
+  }
+}
+
+[[noreturn]] void refuse_conflict(const BoundaryConditionSpec& first,
+                                  const BoundaryConditionSpec& second, const NodeSets& nodes,
+                                  std::int32_t node, int axis, const std::string& what) {
+  throw InputError(
+      second.where, "boundary_conditions (group '" + second.group + "')", kind_name(second),
+      fmt::format("conflicts with the '{}' condition on group '{}' at {}: on the node at {}, "
+                  "{} {}",
+                  kind_name(first), first.group, first.where.to_string(), node_text(nodes, node),
+                  what, axis_letter(axis)),
+      "one imposed velocity per node and component (the same value twice is accepted); narrow "
+      "one of the groups or remove one condition");
+}
+
+/// Two imposed velocities on one node and component, with different values, would leave the
+/// result to the order of the conditions (the last one won, silently): refused. Equal values, such
+/// as a roller and a fixed base meeting at a corner, both impose zero and are accepted.
+/// Returns, per node and axis, the index of the first condition imposing that velocity (or -1).
+std::vector<int> refuse_conflicting_velocities(
+    const CaseDescription& description, const NodeSets& nodes,
+    const std::map<std::string, std::vector<std::int32_t>>& groups) {
+  const int d = nodes.dimension;
+  std::vector<int> owner(nodes.sph_nodes.size() * static_cast<std::size_t>(d), -1);
+  const auto& conditions = description.boundary_conditions;
+  for (std::size_t k = 0; k < conditions.size(); ++k) {
+    const auto found = groups.find(conditions[k].group);
+    if (found == groups.end()) continue;  // reported where the conditions are compiled
+    for (int a = 0; a < d; ++a) {
+      const std::optional<TimeFunction> value = imposed_velocity(conditions[k], a);
+      if (!value) continue;
+      for (std::int32_t node : found->second) {
+        int& first = owner[static_cast<std::size_t>(node) * d + a];
+        if (first < 0) {
+          first = static_cast<int>(k);
+          continue;
+        }
+        const auto& earlier = conditions[static_cast<std::size_t>(first)];
+        if (!same_function(*imposed_velocity(earlier, a), *value))
+          refuse_conflict(earlier, conditions[k], nodes, node, a,
+                          "they impose different velocities along");
+      }
+    }
+  }
+  return owner;
+}
 }  // namespace
 
 int BoundaryConditions::add_function(const TimeFunction& f) {
@@ -51,6 +139,7 @@ BoundaryConditions::BoundaryConditions(
   const int d = nodes.dimension;
   const std::size_t n = nodes.sph_nodes.size();
   const double tolerance = 1e-6 * nodes.spacing;
+  const std::vector<int> velocity_owner = refuse_conflicting_velocities(description, nodes, groups);
   velocity_axes_.assign(n, 0);
   projected_axes_.assign(n, 0);
   pore_pressure_field_ = model.pore_pressure_field();
@@ -176,6 +265,15 @@ BoundaryConditions::BoundaryConditions(
                        "a group of nodes on one straight free face (e.g. an edge group)");
     for (int c = 0; c < d; ++c) {
       if (!condition.traction[c]) continue;
+      // On a face whose velocity component c is imposed, sigma.n is the reaction to that
+      // velocity: a traction there would be dropped silently, so it is refused.
+      for (std::int32_t node : members) {
+        const int owner = velocity_owner[static_cast<std::size_t>(node) * d + c];
+        if (owner >= 0 && is_driven(node, common.front()) && ((velocity_axes_[node] >> c) & 1u))
+          refuse_conflict(description.boundary_conditions[static_cast<std::size_t>(owner)],
+                          condition, nodes, node, c,
+                          "a traction and an imposed velocity act on the same face along");
+      }
       const int function = add_function(*condition.traction[c]);
       for (std::int32_t node : members)
         add_face_stress(node, common.front(), c, function);

@@ -172,6 +172,8 @@ struct ProbeSpec {
   std::vector<std::string> fields;  ///< e.g. "velocity_x", "stress_xx", "pore_pressure"
   Reduction reduction = Reduction::Mean;
   SourceLocation where;
+  std::string path;                         ///< "probes.<index>", for error messages
+  std::vector<SourceLocation> field_where;  ///< of each field (its line, or its --set argument)
 };
 
 struct CaseDescription {

@@ -4,6 +4,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -73,6 +76,89 @@ double twice_signed_area(const std::vector<Vec3>& vertices) {
   return sum;
 }
 
+/// Most vertices of one polygon; the edge-crossing test costs n^2/2 segment pairs.
+constexpr std::size_t kMaxPolygonVertices = 10000;
+
+std::string vertex_text(const Vec3& vertex) {
+  return fmt::format("[{}, {}]", vertex[0], vertex[1]);
+}
+
+/// "edge 2 ([4, 0] to [4, 3], line 12)": edge k joins vertex k and vertex k+1 (the last closes
+/// the outline); the line is that of its first vertex.
+std::string edge_text(const YamlNode& polygon, const std::vector<Vec3>& vertices, std::size_t k) {
+  const SourceLocation& where = polygon.children[k].where;
+  const std::string line = where.line > 0 ? fmt::format(", line {}", where.line) : std::string();
+  return fmt::format("edge {} ({} to {}{})", k, vertex_text(vertices[k]),
+                     vertex_text(vertices[(k + 1) % vertices.size()]), line);
+}
+
+/// Sign of the turn a -> b -> c: +1 left, -1 right, 0 collinear.
+int orientation(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double cross = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+  return (cross > 0.0) - (cross < 0.0);
+}
+
+/// For p collinear with segment [a, b]: p lies within its bounding box, i.e. on the segment.
+bool on_segment(const Vec3& a, const Vec3& b, const Vec3& p) {
+  return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) &&
+         std::min(a[1], b[1]) <= p[1] && p[1] <= std::max(a[1], b[1]);
+}
+
+/// True if the closed segments [a, b] and [c, d] have a point in common.
+bool segments_meet(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const int o1 = orientation(a, b, c), o2 = orientation(a, b, d);
+  const int o3 = orientation(c, d, a), o4 = orientation(c, d, b);
+  if (o1 != o2 && o3 != o4) return true;
+  return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
+         (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
+}
+
+/// Two vertices at the same place make a zero-length edge or a pinched outline.
+void refuse_repeated_vertex(const YamlNode& polygon, const std::vector<Vec3>& vertices) {
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    for (std::size_t j = i + 1; j < vertices.size(); ++j) {
+      if (vertices[i][0] != vertices[j][0] || vertices[i][1] != vertices[j][1]) continue;
+      fail_at(polygon.children[j],
+              fmt::format("vertex {} repeats vertex {} ({}, at {})", j, i, vertex_text(vertices[i]),
+                          polygon.children[i].where.to_string()),
+              "a simple polygon: every vertex once, the outline is closed automatically");
+    }
+}
+
+/// A self-intersecting outline has no well-defined inside (the even-odd fill of the node
+/// generator and the area sum then disagree), so two edges may meet only at their shared vertex.
+void refuse_crossing_edges(const YamlNode& polygon, const std::vector<Vec3>& vertices) {
+  const std::size_t n = vertices.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& a = vertices[i];
+    const Vec3& b = vertices[(i + 1) % n];
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const Vec3& c = vertices[j];
+      const Vec3& d = vertices[(j + 1) % n];
+      const bool adjacent = j == i + 1 || (i == 0 && j == n - 1);
+      bool crossing = false;
+      if (!adjacent) {
+        crossing = segments_meet(a, b, c, d);
+      } else {
+        // Adjacent edges share one vertex; they overlap only if they fold back along one line.
+        const Vec3& shared = j == i + 1 ? b : a;
+        const Vec3& far_i = j == i + 1 ? a : b;
+        const Vec3& far_j = j == i + 1 ? d : c;
+        crossing = orientation(far_i, shared, far_j) == 0 &&
+                   (far_i[0] - shared[0]) * (far_j[0] - shared[0]) +
+                           (far_i[1] - shared[1]) * (far_j[1] - shared[1]) >
+                       0.0;
+      }
+      if (crossing)
+        fail_at(polygon,
+                fmt::format("the polygon intersects itself: {} and {} cross or overlap",
+                            edge_text(polygon, vertices, i), edge_text(polygon, vertices, j)),
+                "a simple polygon (edges meet only at their shared vertices); split a "
+                "crossing outline into several shapes");
+    }
+  }
+}
+
 class CaseReader {
  public:
   CaseReader(const YamlNode& root, std::string file) : root_(root), file_(std::move(file)) {}
@@ -107,9 +193,26 @@ class CaseReader {
   /// `what` is the subject with its verb, e.g. "'plane' is".
   void reject_unless_2d(const YamlNode& node, const std::string& what) const;
 
+  /// Runs one independent part of the reading; its InputError is kept and reading goes on, so
+  /// that one pass reports every mistake (CaseReader::read throws them all together).
+  template <typename Part>
+  void attempt(Part&& part) {
+    try {
+      part();
+    } catch (const InputError& error) {
+      errors_.push_back(error);
+    }
+  }
+  void read_sections(const YamlMap& top);
+  void read_probes(const YamlNode& node);
+
   const YamlNode& root_;
   std::string file_;
   CaseDescription out_;
+  std::vector<InputError> errors_;
+  /// False once a material block failed: a shape naming a material is then not checked against
+  /// the list, which would only repeat that mistake.
+  bool materials_complete_ = false;
 };
 
 CaseDescription CaseReader::read() {
@@ -118,69 +221,97 @@ CaseDescription CaseReader::read() {
                      "a map with at least name, dimension, geometry, materials and time");
   }
   const YamlMap top(root_);
-  top.allow_only({"name", "description", "model", "dimension", "plane", "geometry", "materials",
-                  "groups", "boundary_conditions", "loads", "initial_conditions", "numerics",
-                  "pore_fluid", "time", "output", "probes"});
   out_.file = file_;
   const SourceLocation absent{file_, 0, 0};
   out_.initial.where = out_.numerics.where = out_.output.where = absent;
-
-  read_header(top);
-  read_materials(top.require("materials"));
-  read_geometry(top.require("geometry"));
-  read_groups(top.find("groups"));
-  if (const YamlNode* list = top.find("boundary_conditions")) {
-    for (const YamlNode& item : to_sequence(*list)) {
-      out_.boundary_conditions.push_back(read_boundary_condition(item));
-    }
+  // A mistake that the rest depends on (the dimension) ends the reading early; the others are
+  // collected by attempt().
+  try {
+    read_sections(top);
+  } catch (const InputError& error) {
+    errors_.push_back(error);
   }
-  if (const YamlNode* loads = top.find("loads")) read_loads(*loads);
-  if (const YamlNode* initial = top.find("initial_conditions")) read_initial_conditions(*initial);
-  if (const YamlNode* numerics = top.find("numerics")) read_numerics(*numerics);
+  if (!errors_.empty()) throw InputError::combine(std::move(errors_));
+  return std::move(out_);
+}
+
+void CaseReader::read_sections(const YamlMap& top) {
+  attempt([&] {
+    top.allow_only({"name", "description", "model", "dimension", "plane", "geometry", "materials",
+                    "groups", "boundary_conditions", "loads", "initial_conditions", "numerics",
+                    "pore_fluid", "time", "output", "probes"});
+  });
+  read_header(top);
+  attempt([&] { read_materials(top.require("materials")); });
+  attempt([&] { read_geometry(top.require("geometry")); });
+  attempt([&] { read_groups(top.find("groups")); });
+  if (const YamlNode* list = top.find("boundary_conditions")) {
+    attempt([&] {
+      for (const YamlNode& item : to_sequence(*list))
+        attempt([&] { out_.boundary_conditions.push_back(read_boundary_condition(item)); });
+    });
+  }
+  if (const YamlNode* loads = top.find("loads")) attempt([&] { read_loads(*loads); });
+  if (const YamlNode* initial = top.find("initial_conditions"))
+    attempt([&] { read_initial_conditions(*initial); });
+  if (const YamlNode* numerics = top.find("numerics")) attempt([&] { read_numerics(*numerics); });
   const YamlNode* pore_fluid = top.find("pore_fluid");
   if (out_.model == ModelKind::SaturatedVpw) {
-    read_pore_fluid(top.require("pore_fluid"));
+    attempt([&] { read_pore_fluid(top.require("pore_fluid")); });
   } else if (pore_fluid != nullptr) {
-    fail_at(*pore_fluid, "'pore_fluid' only applies to the saturated model",
-            "model: saturated_vpw, or remove 'pore_fluid'", true);
+    attempt([&] {
+      fail_at(*pore_fluid, "'pore_fluid' only applies to the saturated model",
+              "model: saturated_vpw, or remove 'pore_fluid'", true);
+    });
   }
   for (const BoundaryConditionSpec& condition : out_.boundary_conditions)
     if (condition.kind == BoundaryConditionSpec::Kind::PorePressure &&
         out_.model != ModelKind::SaturatedVpw)
-      throw InputError(condition.where, "boundary_conditions.pore_pressure", "",
-                       "a pore-pressure condition needs the saturated model",
-                       "model: saturated_vpw");
-  read_time(top.require("time"));
-  if (const YamlNode* output = top.find("output")) read_output(*output);
-  if (const YamlNode* probes = top.find("probes")) {
-    std::set<std::string> names;
-    for (const YamlNode& item : to_sequence(*probes)) {
+      errors_.emplace_back(condition.where, "boundary_conditions.pore_pressure", "",
+                           "a pore-pressure condition needs the saturated model",
+                           "model: saturated_vpw");
+  attempt([&] { read_time(top.require("time")); });
+  if (const YamlNode* output = top.find("output")) attempt([&] { read_output(*output); });
+  if (const YamlNode* probes = top.find("probes")) attempt([&] { read_probes(*probes); });
+}
+
+void CaseReader::read_probes(const YamlNode& node) {
+  std::set<std::string> names;
+  for (const YamlNode& item : to_sequence(node)) {
+    attempt([&] {
       ProbeSpec probe = read_probe(item);
       if (!names.insert(probe.name).second) {
         fail_at(*YamlMap(item).find("name"), "a probe with this name is already defined",
                 "a unique probe name");
       }
       out_.probes.push_back(std::move(probe));
-    }
+    });
   }
-  return std::move(out_);
 }
 
 void CaseReader::read_header(const YamlMap& top) {
   // The dimension comes first: vectors, shapes, edges and `plane` all depend on it.
   out_.dimension = static_cast<int>(to_integer(top.require("dimension"), 1, 2));
-  out_.name = to_identifier(top.require("name"), kCaseNameAlphabet,
-                            "lower-case letters, digits and '-' (e.g. bar1d-elastic)");
-  if (const YamlNode* text = top.find("description")) out_.description = to_text(*text);
+  attempt([&] {
+    out_.name = to_identifier(top.require("name"), kCaseNameAlphabet,
+                              "lower-case letters, digits and '-' (e.g. bar1d-elastic)");
+  });
+  if (const YamlNode* text = top.find("description"))
+    attempt([&] { out_.description = to_text(*text); });
   if (const YamlNode* model = top.find("model")) {
-    out_.model = to_choice(*model, {"dry_solid", "saturated_vpw"}) == "dry_solid"
-                     ? ModelKind::DrySolid
-                     : ModelKind::SaturatedVpw;
+    // A model that cannot be read is taken as the default, which at most adds a pore_fluid error.
+    attempt([&] {
+      out_.model = to_choice(*model, {"dry_solid", "saturated_vpw"}) == "dry_solid"
+                       ? ModelKind::DrySolid
+                       : ModelKind::SaturatedVpw;
+    });
   }
   if (const YamlNode* plane = top.find("plane")) {
-    reject_unless_2d(*plane, "'plane' is");
-    out_.plane =
-        to_choice(*plane, {"strain", "stress"}) == "strain" ? PlaneKind::Strain : PlaneKind::Stress;
+    attempt([&] {
+      reject_unless_2d(*plane, "'plane' is");
+      out_.plane = to_choice(*plane, {"strain", "stress"}) == "strain" ? PlaneKind::Strain
+                                                                       : PlaneKind::Stress;
+    });
   }
 }
 
@@ -189,33 +320,42 @@ void CaseReader::read_materials(const YamlNode& node) {
   if (node.children.empty()) {
     fail_at(node, "no material is defined", "at least one named material block");
   }
+  bool complete = true;
   for (const YamlNode& entry : node.children) {
-    const std::string name = read_label_key(entry);
-    const YamlMap block(entry);
+    const std::size_t errors_before = errors_.size();
     ParameterBlock parameters;
-    parameters.path = entry.path;
-    parameters.where = block.where();
-    const YamlNode& model = block.require("model");
-    parameters.words["model"] = {
-        to_identifier(model, kFieldAlphabet, "a material model name such as linear_elastic"),
-        model.where};
+    attempt([&] {
+      read_label_key(entry);
+      const YamlMap block(entry);
+      parameters.path = entry.path;
+      parameters.where = block.where();
+      const YamlNode& model = block.require("model");
+      parameters.words["model"] = {
+          to_identifier(model, kFieldAlphabet, "a material model name such as linear_elastic"),
+          model.where};
+    });
     // Parameter names and ranges belong to each material; here they only have to be numbers.
-    for (const YamlNode& value : entry.children) {
-      if (value.key == "model") continue;
-      parameters.values[value.key] = Parameter{to_number(value), value.where};
+    if (entry.is_map()) {
+      for (const YamlNode& value : entry.children) {
+        if (value.key == "model") continue;
+        attempt([&] { parameters.values[value.key] = Parameter{to_number(value), value.where}; });
+      }
     }
-    out_.materials[name] = std::move(parameters);
+    if (errors_.size() != errors_before) complete = false;
+    out_.materials[entry.key] = std::move(parameters);
   }
+  materials_complete_ = complete;
 }
 
 void CaseReader::read_geometry(const YamlNode& node) {
   const YamlMap geometry(node);
-  geometry.allow_only({"spacing", "shapes"});
+  attempt([&] { geometry.allow_only({"spacing", "shapes"}); });
   out_.geometry.where = geometry.where();
-  out_.geometry.spacing = to_number(geometry.require("spacing"), NumberRange::positive());
-  for (const YamlNode& item : to_sequence(geometry.require("shapes"), 1)) {
-    out_.geometry.shapes.push_back(read_shape(item));
-  }
+  attempt([&] {
+    out_.geometry.spacing = to_number(geometry.require("spacing"), NumberRange::positive());
+  });
+  for (const YamlNode& item : to_sequence(geometry.require("shapes"), 1))
+    attempt([&] { out_.geometry.shapes.push_back(read_shape(item)); });
 }
 
 ShapeSpec CaseReader::read_shape(const YamlNode& node) const {
@@ -249,7 +389,7 @@ ShapeSpec CaseReader::read_shape(const YamlNode& node) const {
   }
   const YamlNode& material = item.require("material");
   shape.material = to_text(material);
-  if (out_.materials.count(shape.material) == 0) {
+  if (materials_complete_ && out_.materials.count(shape.material) == 0) {
     std::vector<std::string> names;
     for (const auto& [name, block] : out_.materials)
       names.push_back(name);
@@ -281,8 +421,17 @@ void CaseReader::read_groups(const YamlNode* node) {
   }
   if (node == nullptr) return;
   const YamlMap groups(*node);
-  for (const YamlNode& entry : node->children)
-    out_.groups.push_back(read_group(entry));
+  for (const YamlNode& entry : node->children) {
+    try {
+      out_.groups.push_back(read_group(entry));
+    } catch (const InputError& error) {
+      errors_.push_back(error);
+      // Known by name all the same, so that conditions and probes using it add no second error.
+      GroupSpec placeholder;
+      placeholder.name = entry.key;
+      out_.groups.push_back(placeholder);
+    }
+  }
 }
 
 GroupSpec CaseReader::read_group(const YamlNode& node) const {
@@ -355,7 +504,7 @@ BoundaryConditionSpec CaseReader::read_boundary_condition(const YamlNode& node) 
 
 void CaseReader::read_loads(const YamlNode& node) {
   const YamlMap loads(node);
-  loads.allow_only({"gravity", "damping"});
+  attempt([&] { loads.allow_only({"gravity", "damping"}); });
   if (const YamlNode* gravity = loads.find("gravity")) out_.gravity = read_gravity(*gravity);
   if (const YamlNode* damping = loads.find("damping")) out_.damping = read_damping(*damping);
 }
@@ -389,7 +538,7 @@ DampingSpec CaseReader::read_damping(const YamlNode& node) const {
 
 void CaseReader::read_initial_conditions(const YamlNode& node) {
   const YamlMap initial(node);
-  initial.allow_only({"velocity", "geostatic"});
+  attempt([&] { initial.allow_only({"velocity", "geostatic"}); });
   out_.initial.where = initial.where();
   if (const YamlNode* velocity = initial.find("velocity")) {
     out_.initial.velocity = read_vector(*velocity);
@@ -406,9 +555,11 @@ void CaseReader::read_initial_conditions(const YamlNode& node) {
 
 void CaseReader::read_numerics(const YamlNode& node) {
   const YamlMap map(node);
-  map.allow_only({"kernel", "h_over_dx", "interpolation_order", "courant", "time_step",
-                  "source_coupling", "rk_substep_factor", "rk_max_substeps", "hourglass",
-                  "artificial_viscosity"});
+  attempt([&] {
+    map.allow_only({"kernel", "h_over_dx", "interpolation_order", "courant", "time_step",
+                    "source_coupling", "rk_substep_factor", "rk_max_substeps", "hourglass",
+                    "artificial_viscosity"});
+  });
   NumericsSpec& numerics = out_.numerics;
   numerics.where = map.where();
   if (const YamlNode* kernel = map.find("kernel")) {
@@ -469,9 +620,11 @@ void CaseReader::read_numerics(const YamlNode& node) {
 
 void CaseReader::read_pore_fluid(const YamlNode& node) {
   const YamlMap map(node);
-  map.allow_only({"bulk_modulus", "density", "porosity", "hydraulic_conductivity", "gravity",
-                  "biot_coefficient", "projection_beta", "preconditioner", "solver_tolerance",
-                  "solver_max_iterations", "laplacian_scale", "checkerboard_stabilisation"});
+  attempt([&] {
+    map.allow_only({"bulk_modulus", "density", "porosity", "hydraulic_conductivity", "gravity",
+                    "biot_coefficient", "projection_beta", "preconditioner", "solver_tolerance",
+                    "solver_max_iterations", "laplacian_scale", "checkerboard_stabilisation"});
+  });
   PoreFluidSpec fluid;
   fluid.where = map.where();
   fluid.bulk_modulus = to_number(map.require("bulk_modulus"), NumberRange::positive());
@@ -516,7 +669,7 @@ void CaseReader::read_pore_fluid(const YamlNode& node) {
 
 void CaseReader::read_time(const YamlNode& node) {
   const YamlMap time(node);
-  time.allow_only({"end", "max_steps"});
+  attempt([&] { time.allow_only({"end", "max_steps"}); });
   out_.time.where = time.where();
   out_.time.end = to_number(time.require("end"), NumberRange::positive());
   if (const YamlNode* steps = time.find("max_steps")) {
@@ -526,7 +679,9 @@ void CaseReader::read_time(const YamlNode& node) {
 
 void CaseReader::read_output(const YamlNode& node) {
   const YamlMap output(node);
-  output.allow_only({"interval", "probe_interval", "checkpoint_interval", "fields"});
+  attempt([&] {
+    output.allow_only({"interval", "probe_interval", "checkpoint_interval", "fields"});
+  });
   out_.output.where = output.where();
   if (const YamlNode* interval = output.find("interval")) {
     out_.output.interval = to_number(*interval, NumberRange::non_negative());
@@ -556,9 +711,11 @@ ProbeSpec CaseReader::read_probe(const YamlNode& node) const {
   probe.name = to_identifier(item.require("name"), kLabelAlphabet, kLabelAlphabetName);
   probe.group = read_group_reference(item.require("group"));
   // Which fields exist depends on the model; the model checks the names when it sets up probes.
+  probe.path = node.path;
   for (const YamlNode& field : to_sequence(item.require("fields"), 1)) {
     probe.fields.push_back(
         to_identifier(field, kFieldAlphabet, "a field name of a-z, 0-9 and '_' (e.g. stress_xx)"));
+    probe.field_where.push_back(field.where);
   }
   if (const YamlNode* reduction = item.find("reduction")) {
     const std::string name = to_choice(*reduction, kReductions);
@@ -592,12 +749,19 @@ Vec3 CaseReader::read_vector(const YamlNode& node) const {
 }
 
 std::vector<Vec3> CaseReader::read_polygon(const YamlNode& node) const {
+  const std::vector<YamlNode>& items = to_sequence(node, 3);
+  if (items.size() > kMaxPolygonVertices) {
+    fail_at(node, fmt::format("the polygon has {} vertices", items.size()),
+            fmt::format("at most {} vertices", kMaxPolygonVertices));
+  }
   std::vector<Vec3> vertices;
-  for (const YamlNode& vertex : to_sequence(node, 3))
+  for (const YamlNode& vertex : items)
     vertices.push_back(read_vector(vertex));
+  refuse_repeated_vertex(node, vertices);
   if (twice_signed_area(vertices) == 0.0) {
     fail_at(node, "the polygon has zero area", "at least 3 vertices that are not all on one line");
   }
+  refuse_crossing_edges(node, vertices);
   return vertices;
 }
 
@@ -996,6 +1160,35 @@ void emit_output_and_probes(YAML::Emitter& out, const CaseDescription& descripti
   out << YAML::EndSeq;
 }
 
+/// The whole text of the case file. A directory (which an ifstream opens and reads as empty on
+/// Linux) and a file that cannot be read are named as such, with the system's reason.
+std::string read_case_bytes(const std::string& path) {
+  const SourceLocation where{path, 0, 0};
+  std::error_code status_error;
+  const auto status = std::filesystem::status(path, status_error);
+  if (std::filesystem::is_directory(status)) {
+    throw InputError(where, "", "", "this is a directory, not a case file",
+                     "the path of a YAML case file, e.g. " +
+                         (std::filesystem::path(path) / "case.yaml").string());
+  }
+  errno = 0;
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) {
+    const int reason = errno != 0 ? errno : ENOENT;
+    throw InputError(where, "", "",
+                     fmt::format("cannot open the case file: {}", std::strerror(reason)),
+                     "a readable YAML file");
+  }
+  std::ostringstream text;
+  text << stream.rdbuf();
+  if (stream.bad()) {
+    throw InputError(where, "", "",
+                     fmt::format("cannot read the case file: {}", std::strerror(errno)),
+                     "a readable YAML file");
+  }
+  return text.str();
+}
+
 }  // namespace
 
 CaseOverride parse_override(const std::string& text) {
@@ -1018,14 +1211,7 @@ CaseOverride parse_override(const std::string& text) {
 
 CaseDescription read_case_file(const std::string& path,
                                const std::vector<CaseOverride>& overrides) {
-  std::ifstream stream(path);
-  if (!stream) {
-    throw InputError(SourceLocation{path, 0, 0}, "", "", "cannot open the case file",
-                     "a readable YAML file");
-  }
-  std::ostringstream text;
-  text << stream.rdbuf();
-  return read_case_text(text.str(), path, overrides);
+  return read_case_text(read_case_bytes(path), path, overrides);
 }
 
 CaseDescription read_case_text(const std::string& text, const std::string& file_name,

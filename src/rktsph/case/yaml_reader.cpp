@@ -64,6 +64,52 @@ void convert_map_entries(const YAML::Node& source, const Origin& origin, YamlNod
   }
 }
 
+/// Counts the values of `source` with every alias expanded, stopping once `count` passes
+/// kMaxYamlValues; yaml-cpp shares an aliased node, so this walk allocates nothing.
+void count_expanded(const YAML::Node& source, std::size_t& count) {
+  if (++count > kMaxYamlValues) return;
+  if (source.IsSequence()) {
+    for (const YAML::Node& item : source) {
+      count_expanded(item, count);
+      if (count > kMaxYamlValues) return;
+    }
+  } else if (source.IsMap()) {
+    for (const auto& entry : source) {
+      count_expanded(entry.second, count);
+      if (count > kMaxYamlValues) return;
+    }
+  }
+}
+
+/// The conversion copies an aliased value at every use, so nested aliases ("billion laughs")
+/// would grow without bound: a document larger than kMaxYamlValues is refused before it is copied.
+void refuse_oversized(const YAML::Node& document, const Origin& origin) {
+  std::size_t count = 0;
+  // The error names the top-level key under which the limit is passed: an alias's own mark is
+  // that of its anchor, which need not be where the expansion happens.
+  YAML::Mark where = document.Mark();
+  std::string key;
+  if (document.IsMap()) {
+    ++count;
+    for (const auto& entry : document) {
+      where = entry.first.Mark();
+      key = entry.first.IsScalar() ? entry.first.Scalar() : "";
+      count_expanded(entry.second, count);
+      if (count > kMaxYamlValues) break;
+    }
+  } else {
+    count_expanded(document, count);
+  }
+  if (count <= kMaxYamlValues) return;
+  throw InputError(location_of(where, origin), key, "",
+                   fmt::format("the document expands to more than {} values (each use of a YAML "
+                               "alias '*name' copies the whole anchored value)",
+                               kMaxYamlValues),
+                   fmt::format("at most {} values after expanding aliases; a case needs a few "
+                               "hundred, so write long tables out or use fewer nested aliases",
+                               kMaxYamlValues));
+}
+
 YamlNode convert(const YAML::Node& source, const Origin& origin, const std::string& path,
                  const SourceLocation& key_where) {
   YamlNode node;
@@ -221,7 +267,9 @@ YamlNode parse_yaml(const std::string& text, const std::string& file_name) {
   }
   const SourceLocation top{file_name, document.IsNull() ? 0 : document.Mark().line + 1,
                            document.IsNull() ? 0 : document.Mark().column + 1};
-  return convert(document, Origin{file_name, true, ""}, "", top);
+  const Origin origin{file_name, true, ""};
+  refuse_oversized(document, origin);
+  return convert(document, origin, "", top);
 }
 
 void apply_override(YamlNode& root, const std::string& key, const std::string& value_text) {
@@ -286,8 +334,9 @@ void apply_override(YamlNode& root, const std::string& key, const std::string& v
     }
   }
 
-  YamlNode value = convert(parsed, Origin{value_location.file, false, override_text}, current->path,
-                           value_location);
+  const Origin origin{value_location.file, false, override_text};
+  refuse_oversized(parsed, origin);
+  YamlNode value = convert(parsed, origin, current->path, value_location);
   mark_as_override(value, value_location, override_text);
   set_paths(value, current->path);
   value.key = current->key;
@@ -385,28 +434,43 @@ void YamlMap::allow_only(std::initializer_list<std::string_view> allowed) const 
   allow_only(std::vector<std::string>(allowed.begin(), allowed.end()));
 }
 
-void YamlMap::allow_only(const std::vector<std::string>& allowed) const {
-  for (const YamlNode& child : node_.children) {
-    if (std::find(allowed.begin(), allowed.end(), child.key) != allowed.end()) continue;
-    const std::string suggestion = closest_match(child.key, allowed);
-    const std::string hint =
-        suggestion.empty() ? "" : fmt::format("; did you mean '{}'?", suggestion);
-    const std::string where_text =
-        node_.path.empty() ? "at the top level" : fmt::format("in '{}'", node_.path);
-    if (child.key_from_override) {
-      throw InputError(SourceLocation{"<--set>", 0, 0}, child.path, child.override_text,
-                       fmt::format("the --set path does not exist: no key '{}' {}{}", child.key,
-                                   where_text, hint),
-                       quoted_list(allowed));
-    }
-    throw InputError(child.key_where, child.path, child.key,
-                     fmt::format("unknown key '{}' {}{}", child.key, where_text, hint),
-                     quoted_list(allowed));
+InputError YamlMap::unknown_key_error(const YamlNode& child) const {
+  const std::string suggestion = closest_match(child.key, allowed_);
+  const std::string hint =
+      suggestion.empty() ? "" : fmt::format("; did you mean '{}'?", suggestion);
+  const std::string where_text =
+      node_.path.empty() ? "at the top level" : fmt::format("in '{}'", node_.path);
+  if (child.key_from_override) {
+    return InputError(
+        SourceLocation{"<--set>", 0, 0}, child.path, child.override_text,
+        fmt::format("the --set path does not exist: no key '{}' {}{}", child.key, where_text, hint),
+        quoted_list(allowed_));
   }
+  return InputError(child.key_where, child.path, child.key,
+                    fmt::format("unknown key '{}' {}{}", child.key, where_text, hint),
+                    quoted_list(allowed_));
+}
+
+void YamlMap::allow_only(const std::vector<std::string>& allowed) const {
+  allowed_ = allowed;
+  // Every unknown key of the map is reported, not only the first.
+  std::vector<InputError> unknown;
+  for (const YamlNode& child : node_.children) {
+    if (std::find(allowed.begin(), allowed.end(), child.key) == allowed.end())
+      unknown.push_back(unknown_key_error(child));
+  }
+  if (!unknown.empty()) throw InputError::combine(std::move(unknown));
 }
 
 const YamlNode& YamlMap::require(std::string_view key) const {
   if (const YamlNode* value = find(key)) return *value;
+  // A required key that is missing because it was misspelt is one mistake, not two: the
+  // misspelling is reported (InputError::combine drops the copy allow_only reported).
+  for (const YamlNode& child : node_.children) {
+    const bool unknown = std::find(allowed_.begin(), allowed_.end(), child.key) == allowed_.end();
+    if (unknown && !allowed_.empty() && closest_match(child.key, allowed_) == key)
+      throw unknown_key_error(child);
+  }
   throw InputError(where(), child_path(node_.path, std::string(key)), "",
                    fmt::format("missing required key '{}'", key),
                    fmt::format("add '{}:' to {}", key,

@@ -74,6 +74,49 @@ void check_vertices_on_lattice(const GeometrySpec& geometry, int dimension, cons
               "coordinates that differ from the smallest coordinate of all shapes by "
               "a whole number of spacings");
       }
+  // A segment or rectangle thinner than a spacing passes the test above (its vertices round to
+  // one lattice line) but has no cell, so nothing would move its nodes.
+  for (const ShapeSpec& shape : geometry.shapes) {
+    if (shape.kind == ShapeSpec::Kind::Polygon) continue;
+    for (int a = 0; a < dimension; ++a) {
+      const double width = shape.vertices[1][a] - shape.vertices[0][a];
+      if (std::round(width / dx) >= 1.0) continue;  // (lround of an overflowing ratio is UB)
+      throw InputError(shape.where, "geometry.shapes", fmt::format("{}", width),
+                       fmt::format("the shape is {} m wide along {}, less than one spacing ({})",
+                                   width, a == 0 ? "x" : "y", dx),
+                       "shapes at least one spacing wide along every axis");
+    }
+  }
+}
+
+/// A point group picks its nearest node; a point more than half a spacing (along some axis) from
+/// every node lies outside the body or in a hole, and snapping it would silently move it.
+void refuse_point_off_the_body(const NodeSets& nodes, const GroupSpec& group, std::size_t nearest) {
+  const PointCloud& points = nodes.sph_nodes;
+  const double half = 0.5 * nodes.spacing * (1.0 + kLatticeTolerance);
+  double distance_squared = 0.0;
+  bool within = true;
+  for (int a = 0; a < nodes.dimension; ++a) {
+    const double offset = points.position[a][nearest] - group.point[a];
+    distance_squared += offset * offset;
+    if (std::abs(offset) > half) within = false;
+  }
+  if (within) return;
+  const auto coordinates = [&](auto&& coordinate) {
+    std::string text;
+    for (int a = 0; a < nodes.dimension; ++a)
+      text += fmt::format("{}{}", a > 0 ? ", " : "", coordinate(a));
+    return nodes.dimension == 1 ? text : "[" + text + "]";
+  };
+  throw InputError(
+      group.where, "groups." + group.name + ".point",
+      coordinates([&](int a) { return group.point[a]; }),
+      fmt::format("the point is {:.6g} m from the nearest node (at {}), more than half a spacing "
+                  "(dx/2 = {:.6g} m) along an axis: it lies outside the body",
+                  std::sqrt(distance_squared),
+                  coordinates([&](int a) { return points.position[a][nearest]; }),
+                  0.5 * nodes.spacing),
+      "a point within half a spacing, along every axis, of a node of the body");
 }
 
 // Length (1D) or area (2D) of a shape, and its boundary length (2D).
@@ -291,6 +334,7 @@ std::map<std::string, std::vector<std::int32_t>> select_groups(
             nearest = i;
           }
         }
+        refuse_point_off_the_body(nodes, group, nearest);
         members = {static_cast<std::int32_t>(nearest)};
         break;
       }

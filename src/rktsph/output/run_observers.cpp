@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "rktsph/case/yaml_reader.hpp"
 #include "rktsph/core/build_info.hpp"
 #include "rktsph/output/atomic_file.hpp"
 #include "rktsph/output/json_writer.hpp"
@@ -208,12 +209,44 @@ void FieldSeriesWriter::restore_checkpoint(CheckpointIn& in) {
   collection_.set_entries(std::move(entries));
 }
 
+namespace {
+std::string join_names(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names)
+    text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+}  // namespace
+
+void check_probes(const Simulation& simulation) {
+  for (const ProbeSpec& probe : simulation.description().probes) {
+    if (simulation.groups().count(probe.group) == 0)
+      throw InputError(probe.where, probe.path.empty() ? "probes.group" : probe.path + ".group",
+                       probe.group, "unknown group",
+                       "a group defined under 'groups' or a built-in group");
+    for (std::size_t f = 0; f < probe.fields.size(); ++f) {
+      if (find_quantity(simulation, probe.fields[f])) continue;
+      // Probes built in code (validation cases) carry no per-field locations.
+      const bool located = f < probe.field_where.size();
+      const std::vector<std::string> names = quantity_names(simulation);
+      const std::string suggestion = closest_match(probe.fields[f], names);
+      throw InputError(
+          located ? probe.field_where[f] : probe.where,
+          located ? fmt::format("{}.fields.{}", probe.path, f) : "probes.fields", probe.fields[f],
+          suggestion.empty() ? "unknown probe field"
+                             : fmt::format("unknown probe field; did you mean '{}'?", suggestion),
+          join_names(names));
+    }
+  }
+}
+
 ProbeRecorder::ProbeRecorder(const Simulation& simulation, std::filesystem::path path)
     : path_(std::move(path)),
       table_({"time"}),
       every_step_(simulation.description().output.probe_interval <= 0.0),
       records_(simulation.description().output.probe_interval),
       field_outputs_(simulation.description().output.interval) {
+  check_probes(simulation);
   std::vector<std::string> names = {"time"};
   for (const ProbeSpec& probe : simulation.description().probes) {
     const auto group = simulation.groups().find(probe.group);

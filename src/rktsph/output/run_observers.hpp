@@ -64,6 +64,11 @@ class FieldSeriesWriter final : public Observer, public Checkpointed {
   double last_written_time_ = -1.0;
 };
 
+/// Checks that every probe's group and fields exist in `simulation` (field names depend on the
+/// model and materials, so the reader cannot): InputError at the offending field's line, or at its
+/// --set argument. `rktsph check` calls it too, so that it refuses what `run` would.
+void check_probes(const Simulation& simulation);
+
 /// Records probes (group reductions of named quantities) into probes.csv: one column per probe
 /// and field, named "<probe>.<field>". The file is rewritten whole with every field output (the
 /// same schedule as FieldSeriesWriter), every 2 s of wall time and at the end.

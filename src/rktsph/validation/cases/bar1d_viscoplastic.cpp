@@ -164,6 +164,11 @@ FrontDecay front_decay_error(const ValidationContext& context) {
   loaded_end(description).velocity[0] = sudden;
   std::vector<double> distances;
   description.probes.clear();
+  // The case's point groups served its own probes; on the shortened bar they may lie beyond its
+  // end, which a point group may not (docs/input-reference.md, groups).
+  std::erase_if(description.groups, [&](const GroupSpec& group) {
+    return group.kind == GroupSpec::Kind::Point && group.point[0] > length;
+  });
   for (std::size_t k = 0; k < distance_ratios.size(); ++k) {
     // On a node, so that the distance used for the law is the node's.
     const double distance = std::round(distance_ratios[k] * points_per_decay_length) * spacing;
