@@ -11,10 +11,15 @@ DEB_PACKAGES := build-essential cmake libeigen3-dev libyaml-cpp-dev libcli11-dev
                 libgtest-dev libgmock-dev libbenchmark-dev python3
 # Extra packages for the validation report (plots, browser check); not needed by `make test`.
 DEB_REPORT_PACKAGES := python3-matplotlib chromium
+# Extra packages for the sanitizer build with the libFuzzer targets (`make fuzz`, .ci/run): clang,
+# its sanitizer and libFuzzer runtimes, and its OpenMP.
+DEB_FUZZ_PACKAGES := clang-14 libclang-rt-14-dev libfuzzer-14-dev libomp-14-dev
+FUZZ_BUILD_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 60
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: deps deps-report configure build run test bench validate format clean
+.PHONY: deps deps-report deps-fuzz configure build run test bench validate fuzz format clean
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
@@ -25,6 +30,11 @@ deps:
 
 deps-report: deps
 	@missing=""; for p in $(DEB_REPORT_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; fi
+
+deps-fuzz: deps
+	@missing=""; for p in $(DEB_FUZZ_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
 	if [ -n "$$missing" ]; then \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; fi
 
@@ -53,6 +63,13 @@ validate: deps-report build
 	@status=0; $(BUILD_DIR)/rktsph validate --all --report $(REPORT) || status=$$?; \
 	tools/check_report.sh $(REPORT) && \
 	echo "Report: $(REPORT)/index.html (and index.md)" && exit $$status
+
+# The case-file fuzzer under ASan + UBSan (clang), for FUZZ_SECONDS (README.md, "Fuzzing"). The
+# same build holds the unit tests: `cd build-fuzz && ctest -E Slow` runs them under the sanitizers.
+fuzz: deps-fuzz
+	$(MAKE) build BUILD_DIR=$(FUZZ_BUILD_DIR) BUILD_TYPE=RelWithDebInfo \
+	  CMAKE_FLAGS="-DCMAKE_CXX_COMPILER=clang++-14 -DRKTSPH_FUZZ=ON -DRKTSPH_BENCHMARKS=OFF $(CMAKE_FLAGS)"
+	fuzz/run.sh $(FUZZ_BUILD_DIR) $(FUZZ_SECONDS)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')

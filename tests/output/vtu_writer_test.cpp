@@ -34,21 +34,30 @@ const char* const kPython = "/usr/bin/python3";
 const fs::path kReader = fs::path(RKTSPH_TEST_DATA_DIR).parent_path() / "output" / "read_vtu.py";
 
 // --- A minimal JSON reader for the script's output (numbers through strtod, which is exact). ---
+// A member struct declared ahead and operator[] defined after both types are complete: clang 14
+// with libstdc++ 12 cannot instantiate std::pair<std::string, Json> inside Json.
+struct JsonMember;
 struct Json {
   using Array = std::vector<Json>;
-  using Object = std::vector<std::pair<std::string, Json>>;
+  using Object = std::vector<JsonMember>;
   std::variant<std::nullptr_t, bool, double, std::string, Array, Object> value;
 
-  const Json& operator[](const std::string& key) const {
-    for (const auto& [name, member] : std::get<Object>(value)) {
-      if (name == key) return member;
-    }
-    throw std::out_of_range("no key " + key);
-  }
+  const Json& operator[](const std::string& key) const;
   const Array& array() const { return std::get<Array>(value); }
   double number() const { return std::get<double>(value); }
   const std::string& text() const { return std::get<std::string>(value); }
 };
+struct JsonMember {
+  std::string name;
+  Json value;
+};
+
+const Json& Json::operator[](const std::string& key) const {
+  for (const auto& [name, member] : std::get<Object>(value)) {
+    if (name == key) return member;
+  }
+  throw std::out_of_range("no key " + key);
+}
 
 class JsonParser {
  public:
@@ -113,7 +122,7 @@ class JsonParser {
         do {
           std::string key = parse_string();
           expect(':');
-          members.emplace_back(std::move(key), parse_value());
+          members.push_back({std::move(key), parse_value()});
         } while (consume(','));
         expect('}');
       }

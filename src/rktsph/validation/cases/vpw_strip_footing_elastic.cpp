@@ -127,11 +127,12 @@ void report_strip_footing(ValidationReport& report, const CaseDescription& descr
     for (double& p : measured.y)
       p *= 1e-3;
     histories.series.push_back(std::move(measured));
+    // An init-capture: clang 14 cannot capture a structured binding (C++20 allows it).
     if (traction)
       histories.series.push_back(
           sample_curve(fmt::format("undrained, z = {:g} b, under the applied q(t)", depth_ratio),
-                       0.0, end, 2000, [&, depth_ratio](double t) {
-                         return 1e-3 * reference(-(*traction)(t), depth_ratio * kHalfWidth);
+                       0.0, end, 2000, [&, depth = depth_ratio](double t) {
+                         return 1e-3 * reference(-(*traction)(t), depth * kHalfWidth);
                        }));
   }
   report.add_figure(std::move(histories));
