@@ -16,6 +16,7 @@
 
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/core/error.hpp"
+#include "rktsph/output/run_observers.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
 namespace {
@@ -59,6 +60,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const rktsph::CaseDescription description = rktsph::read_case_text(text, "fuzz-case.yaml");
     if (!(lattice_points(description) <= kMaxBuiltLatticePoints)) return 0;
     const rktsph::Simulation simulation(description);
+    rktsph::check_run_observers(simulation);  // output fields, probe groups and fields, as check
     // What `check` prints; reading them must not fail either.
     static_cast<void>(simulation.time_step());
     static_cast<void>(simulation.total_steps());

@@ -64,43 +64,61 @@ void convert_map_entries(const YAML::Node& source, const Origin& origin, YamlNod
   }
 }
 
-/// Counts the values of `source` with every alias expanded, stopping once `count` passes
-/// kMaxYamlValues; yaml-cpp shares an aliased node, so this walk allocates nothing.
-void count_expanded(const YAML::Node& source, std::size_t& count) {
-  if (++count > kMaxYamlValues) return;
+/// The size of a document with every alias expanded, as far as it was walked.
+struct ExpandedSize {
+  std::size_t values = 0;
+  bool too_deep = false;
+  bool too_large() const { return too_deep || values > kMaxYamlValues; }
+};
+
+/// Counts the values of `source` with every alias expanded, stopping once the count passes
+/// kMaxYamlValues or the nesting kMaxYamlDepth (a self-referencing alias nests without end);
+/// yaml-cpp shares an aliased node, so this walk allocates nothing.
+void count_expanded(const YAML::Node& source, int depth, ExpandedSize& size) {
+  ++size.values;
+  if (depth > kMaxYamlDepth) size.too_deep = true;
+  if (size.too_large()) return;
   if (source.IsSequence()) {
     for (const YAML::Node& item : source) {
-      count_expanded(item, count);
-      if (count > kMaxYamlValues) return;
+      count_expanded(item, depth + 1, size);
+      if (size.too_large()) return;
     }
   } else if (source.IsMap()) {
     for (const auto& entry : source) {
-      count_expanded(entry.second, count);
-      if (count > kMaxYamlValues) return;
+      count_expanded(entry.second, depth + 1, size);
+      if (size.too_large()) return;
     }
   }
 }
 
 /// The conversion copies an aliased value at every use, so nested aliases ("billion laughs")
-/// would grow without bound: a document larger than kMaxYamlValues is refused before it is copied.
+/// would grow without bound: a document larger than kMaxYamlValues, or nested deeper than
+/// kMaxYamlDepth, is refused before it is copied.
 void refuse_oversized(const YAML::Node& document, const Origin& origin) {
-  std::size_t count = 0;
+  ExpandedSize size;
   // The error names the top-level key under which the limit is passed: an alias's own mark is
   // that of its anchor, which need not be where the expansion happens.
   YAML::Mark where = document.Mark();
   std::string key;
   if (document.IsMap()) {
-    ++count;
+    ++size.values;
     for (const auto& entry : document) {
       where = entry.first.Mark();
       key = entry.first.IsScalar() ? entry.first.Scalar() : "";
-      count_expanded(entry.second, count);
-      if (count > kMaxYamlValues) break;
+      count_expanded(entry.second, 1, size);
+      if (size.too_large()) break;
     }
   } else {
-    count_expanded(document, count);
+    count_expanded(document, 0, size);
   }
-  if (count <= kMaxYamlValues) return;
+  if (!size.too_large()) return;
+  if (size.too_deep)
+    throw InputError(
+        location_of(where, origin), key, "",
+        fmt::format("the document nests deeper than {} levels (a YAML alias used "
+                    "inside its own anchor, such as '&a [*a]', nests without end)",
+                    kMaxYamlDepth),
+        fmt::format("at most {} levels of nesting; a case needs about six", kMaxYamlDepth));
   throw InputError(location_of(where, origin), key, "",
                    fmt::format("the document expands to more than {} values (each use of a YAML "
                                "alias '*name' copies the whole anchored value)",

@@ -45,6 +45,10 @@ struct YamlNode {
 /// hold: bundled cases hold a few hundred, and at about 0.4 KB per converted value this keeps a
 /// hostile file of nested aliases to some 40 MB and a fraction of a second.
 inline constexpr std::size_t kMaxYamlValues = 100000;
+/// The deepest nesting a case file may have once aliases are expanded: cases nest about six levels,
+/// and an alias inside its own anchor (`&a [*a]`) nests without end, which would overflow the stack
+/// of the walks over the tree.
+inline constexpr int kMaxYamlDepth = 64;
 
 /// Parses `text` (a whole case file) into a located tree. A syntax error, a duplicate key, a
 /// non-scalar map key or more than kMaxYamlValues values becomes an InputError at the offending
