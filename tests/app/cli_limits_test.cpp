@@ -18,13 +18,11 @@ namespace fs = std::filesystem;
 using Result = rktsph::test::ShellResult;
 
 Result rktsph_command(const std::string& arguments) {
-  return rktsph::test::shell(std::string(RKTSPH_BINARY) + " " + arguments + " 2>&1");
+  return rktsph::test::run_rktsph(arguments);
 }
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("rktsph_limits_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  return rktsph::test::scratch_file("rktsph_limits", name);
 }
 
 const std::string kBarWave = std::string(RKTSPH_SOURCE_DIR) + "/cases/bar-wave-2d-t/case.yaml";

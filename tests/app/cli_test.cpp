@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "../support/shell.hpp"
+#include "../support/small_bar.hpp"
 
 namespace {
 
@@ -22,15 +23,12 @@ namespace fs = std::filesystem;
 
 using Result = rktsph::test::ShellResult;
 
-// The program with these arguments; output is stdout and stderr.
 Result run(const std::string& arguments) {
-  return rktsph::test::shell(std::string(RKTSPH_BINARY) + " " + arguments + " 2>&1");
+  return rktsph::test::run_rktsph(arguments);
 }
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("rktsph_cli_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  return rktsph::test::scratch_file("rktsph_cli", name);
 }
 
 fs::path write_case(const std::string& name, const std::string& text) {
@@ -39,23 +37,7 @@ fs::path write_case(const std::string& name, const std::string& text) {
   return path;
 }
 
-const char* kBar = R"(name: bar
-dimension: 1
-geometry:
-  spacing: 0.5
-  shapes:
-    - segment: [0.0, 10.0]
-      material: soil
-materials:
-  soil: {model: linear_elastic, density: 2000.0, young_modulus: 1.0e8, poisson_ratio: 0.0}
-boundary_conditions:
-  - {group: xmax, velocity: {x: -0.1}}
-numerics: {courant: 0.9}
-time: {end: 0.05}
-output: {interval: 0.01}
-probes:
-  - {name: free, group: xmin, fields: [velocity_x]}
-)";
+using rktsph::test::kBar;
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
   text.replace(text.find(from), from.size(), to);

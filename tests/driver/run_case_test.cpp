@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "../support/small_bar.hpp"
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/core/error.hpp"
 #include "rktsph/driver/run_case.hpp"
@@ -22,23 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kBar = R"(name: bar
-dimension: 1
-geometry:
-  spacing: 0.5
-  shapes:
-    - segment: [0.0, 10.0]
-      material: soil
-materials:
-  soil: {model: linear_elastic, density: 2000.0, young_modulus: 1.0e8, poisson_ratio: 0.0}
-boundary_conditions:
-  - {group: xmax, velocity: {x: -0.1}}
-numerics: {courant: 0.9}
-time: {end: 0.05}
-output: {interval: 0.01}
-probes:
-  - {name: free, group: xmin, fields: [velocity_x]}
-)";
+using rktsph::test::kBar;
 
 std::string read_whole_file(const fs::path& path) {
   std::ifstream stream(path, std::ios::binary);

@@ -4,8 +4,11 @@
 
 #include <sys/wait.h>
 
+#include <unistd.h>
+
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 namespace rktsph::test {
@@ -23,6 +26,21 @@ inline ShellResult shell(const std::string& command) {
     output += buffer.data();
   const int raw = pipe ? pclose(pipe) : -1;
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
+}
+
+#ifdef RKTSPH_BINARY
+/// The rktsph program with these arguments; output is its stdout and stderr.
+inline ShellResult run_rktsph(const std::string& arguments) {
+  return shell(std::string(RKTSPH_BINARY) + " " + arguments + " 2>&1");
+}
+#endif
+
+/// `name` in a scratch folder of this test process (<tmp>/<prefix>_<pid>/, created).
+inline std::filesystem::path scratch_file(const std::string& prefix, const std::string& name) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / (prefix + "_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  return dir / name;
 }
 
 }  // namespace rktsph::test
