@@ -246,22 +246,12 @@ ProbeRecorder::ProbeRecorder(const Simulation& simulation, std::filesystem::path
       every_step_(simulation.description().output.probe_interval <= 0.0),
       records_(simulation.description().output.probe_interval),
       field_outputs_(simulation.description().output.interval) {
-  check_probes(simulation);
+  check_probes(simulation);  // every group and field below exists
   std::vector<std::string> names = {"time"};
   for (const ProbeSpec& probe : simulation.description().probes) {
-    const auto group = simulation.groups().find(probe.group);
-    if (group == simulation.groups().end())
-      throw InputError(probe.where, "probes.group", probe.group, "unknown group",
-                       "a group defined under 'groups' or a built-in group");
+    const auto& group = simulation.groups().at(probe.group);
     for (const std::string& field : probe.fields) {
-      NodeQuantity quantity = find_quantity(simulation, field);
-      if (!quantity) {
-        std::string allowed;
-        for (const std::string& name : quantity_names(simulation))
-          allowed += (allowed.empty() ? "" : ", ") + name;
-        throw InputError(probe.where, "probes.fields", field, "unknown probe field", allowed);
-      }
-      columns_.push_back({&group->second, std::move(quantity), probe.reduction});
+      columns_.push_back({&group, find_quantity(simulation, field), probe.reduction});
       names.push_back(probe.name + "." + field);
     }
   }
