@@ -347,7 +347,7 @@ TEST(CaseReader, RangeLimitsAreOpenOrClosedAsSpecified) {
   const NumericsSpec controls =
       read_case_text(with_numerics("hourglass: {stiffness: 1, strain_stiffness: 0}"), kFile)
           .numerics;
-  EXPECT_EQ(controls.hourglass_stiffness, 1.0);
+  EXPECT_EQ(controls.hourglass_stiffness.value_or(0.0), 1.0);
   EXPECT_EQ(controls.strain_hourglass_stiffness, 0.0);
   // Rejected edges and beyond, each at the value's line with the range in `allowed`.
   const std::vector<std::pair<std::string, std::string>> rejected = {
@@ -375,9 +375,9 @@ TEST(CaseReader, RangeLimitsAreOpenOrClosedAsSpecified) {
 TEST(CaseReader, CheckerboardStabilisationIsReadAndANegativeValueRejected) {
   const std::string base = read_fixture("rich2d.yaml");
   const std::string entry = "  solver_tolerance: 1.0e-9\n";
-  EXPECT_EQ(read_case_text(base, kFile).pore_fluid->checkerboard_stabilisation, 0.3);  // default
-  const std::string off = replace_once(base, entry, entry + "  checkerboard_stabilisation: 0\n");
-  EXPECT_EQ(read_case_text(off, kFile).pore_fluid->checkerboard_stabilisation, 0.0);
+  EXPECT_EQ(read_case_text(base, kFile).pore_fluid->checkerboard_stabilisation, 0.0);  // default
+  const std::string on = replace_once(base, entry, entry + "  checkerboard_stabilisation: 0.3\n");
+  EXPECT_EQ(read_case_text(on, kFile).pore_fluid->checkerboard_stabilisation, 0.3);
   const std::string text =
       replace_once(base, entry, entry + "  checkerboard_stabilisation: -0.1\n");
   const InputError error = read_error(text);

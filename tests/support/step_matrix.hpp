@@ -27,6 +27,7 @@ inline Eigen::MatrixXd step_matrix(Simulation& simulation, Eigen::Index size,
     std::fill(state.fields.data().begin(), state.fields.data().end(), 0.0);
     std::fill(state.displacement.data().begin(), state.displacement.data().end(), 0.0);
     std::fill(state.strain.data().begin(), state.strain.data().end(), 0.0);
+    std::fill(state.hourglass_force.data().begin(), state.hourglass_force.data().end(), 0.0);
     state.fields.data()[static_cast<std::size_t>(column)] = unit(column);
     state.time = 0.0;
     simulation.step().advance(state, dt > 0.0 ? dt : simulation.time_step());
@@ -37,7 +38,8 @@ inline Eigen::MatrixXd step_matrix(Simulation& simulation, Eigen::Index size,
 }
 
 /// The state of the zero-energy controls' step (docs/theory.md §3.4): every field, then the
-/// displacement and the strain the nodal stress received, which their forces depend on.
+/// displacement and the strain the nodal stress received, then the cells' hourglass forces, which
+/// the controls' forces depend on.
 inline std::vector<double*> unknowns_with_displacement(State& state) {
   std::vector<double*> slots;
   for (double& x : state.fields.data())
@@ -46,12 +48,14 @@ inline std::vector<double*> unknowns_with_displacement(State& state) {
     slots.push_back(&x);
   for (double& x : state.strain.data())
     slots.push_back(&x);
+  for (double& x : state.hourglass_force.data())
+    slots.push_back(&x);
   return slots;
 }
 
-/// The affine one-step map x -> M x + c on fields, displacement and received strain, with
-/// stresses in units of `impedance` (rho c_p), displacements in units of dt and strains in units
-/// of dt / dx (so that all unknowns are velocities).
+/// The affine one-step map x -> M x + c on fields, displacement, received strain and hourglass
+/// forces, with stresses in units of `impedance` (rho c_p), displacements in units of dt, strains
+/// in units of dt / dx and hourglass forces (stress x length) in units of impedance x dx.
 struct AffineStep {
   Eigen::MatrixXd matrix;
   Eigen::VectorXd constant;
@@ -70,8 +74,11 @@ inline AffineStep affine_step(Simulation& simulation, double impedance) {
   Eigen::VectorXd unit = Eigen::VectorXd::Constant(size, impedance);
   unit.head(step.velocities).setOnes();
   const auto displacements = static_cast<Eigen::Index>(state.displacement.data().size());
+  const auto strains = static_cast<Eigen::Index>(state.strain.data().size());
+  const auto forces = static_cast<Eigen::Index>(state.hourglass_force.data().size());
   unit.segment(fields, displacements).setConstant(dt);
-  unit.tail(size - fields - displacements).setConstant(dt / simulation.nodes().spacing);
+  unit.segment(fields + displacements, strains).setConstant(dt / simulation.nodes().spacing);
+  unit.tail(forces).setConstant(impedance * simulation.nodes().spacing);
   auto advance = [&](const Eigen::VectorXd& x) {
     for (Eigen::Index k = 0; k < size; ++k)
       *slots[static_cast<std::size_t>(k)] = x(k) * unit(k);
@@ -89,12 +96,42 @@ inline AffineStep affine_step(Simulation& simulation, double impedance) {
   return step;
 }
 
+/// The one-step map on the fields but sigma_zz and on the cells' hourglass forces (state since
+/// docs/theory.md eq. 3.9), each force in units of `force_unit`, built column by column.
+inline Eigen::MatrixXd step_matrix_with_forces(Simulation& simulation, double force_unit,
+                                               double dt = 0.0) {
+  State& state = simulation.state();
+  const auto fields =
+      static_cast<Eigen::Index>((state.fields.field_count() - 1) * state.fields.point_count());
+  const auto forces = static_cast<Eigen::Index>(state.hourglass_force.data().size());
+  const Eigen::Index size = fields + forces;
+  auto slot = [&](Eigen::Index k) -> double& {
+    return k < fields ? state.fields.data()[static_cast<std::size_t>(k)]
+                      : state.hourglass_force.data()[static_cast<std::size_t>(k - fields)];
+  };
+  auto unit = [&](Eigen::Index k) { return k < fields ? 1.0 : force_unit; };
+  Eigen::MatrixXd matrix(size, size);
+  for (Eigen::Index column = 0; column < size; ++column) {
+    std::fill(state.fields.data().begin(), state.fields.data().end(), 0.0);
+    std::fill(state.displacement.data().begin(), state.displacement.data().end(), 0.0);
+    std::fill(state.strain.data().begin(), state.strain.data().end(), 0.0);
+    std::fill(state.hourglass_force.data().begin(), state.hourglass_force.data().end(), 0.0);
+    slot(column) = unit(column);
+    state.time = 0.0;
+    simulation.step().advance(state, dt > 0.0 ? dt : simulation.time_step());
+    for (Eigen::Index row = 0; row < size; ++row)
+      matrix(row, column) = slot(row) / unit(row);
+  }
+  return matrix;
+}
+
+/// Spectral radius of the one-step map of the fields (sigma_zz left out) and, when the hourglass
+/// stiffness is on, of the cells' hourglass forces.
 inline double spectral_radius(Simulation& simulation, double dt = 0.0) {
-  const FieldArray& fields = simulation.state().fields;
-  const auto size = static_cast<Eigen::Index>((fields.field_count() - 1) * fields.point_count());
   using LongMatrix = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
+  const double force_unit = simulation.nodes().spacing;  // a force k q of 1 Pa m per unit field
   const Eigen::EigenSolver<LongMatrix> solver(
-      step_matrix(simulation, size, {}, dt).cast<long double>(), false);
+      step_matrix_with_forces(simulation, force_unit, dt).cast<long double>(), false);
   return static_cast<double>(solver.eigenvalues().cwiseAbs().maxCoeff());
 }
 

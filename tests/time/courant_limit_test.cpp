@@ -27,8 +27,10 @@ test::ElasticBlock block(double h_over_dx, double viscosity, const std::string& 
 }
 
 // The radius of the step at Courant number `courant`, which may be above what a case may ask for.
-double radius_at(double h_over_dx, double viscosity, double courant) {
-  Simulation simulation(block(h_over_dx, viscosity, "courant: 0.1").description());
+double radius_at(double h_over_dx, double viscosity, double courant,
+                 const std::string& update = "mean_velocity") {
+  Simulation simulation(
+      block(h_over_dx, viscosity, "courant: 0.1, stress_update: " + update).description());
   const double dt_per_courant = simulation.time_step() / 0.1;
   return test::spectral_radius(simulation, courant * dt_per_courant);
 }
@@ -45,14 +47,22 @@ std::string error_of(const test::ElasticBlock& b) {
 TEST(CourantLimitSlow, StableAtTheAllowedLimitAndUnstableTenPercentAbove) {
   struct Setting {
     double h_over_dx, viscosity;
+    const char* update;
+    bool tight;  // unstable 10 % above the limit
   };
+  // On wide stencils the mean-velocity update (the 2D default) is measured stable up to C = 1.05
+  // (radius 1 - 7e-7); the limit stays at the half-step update's 0.75 (docs/theory.md §2.5).
   for (const Setting s :
-       {Setting{0.75, 0.25}, Setting{0.75, 0.5}, Setting{0.75, 1.0}, Setting{1.3, 0.0}}) {
+       {Setting{0.75, 0.25, "mean_velocity", true}, Setting{0.75, 0.5, "mean_velocity", true},
+        Setting{0.75, 1.0, "mean_velocity", true}, Setting{0.75, 0.5, "half_step", true},
+        Setting{1.3, 0.0, "half_step", true}, Setting{1.3, 0.0, "mean_velocity", false}}) {
     const double limit = stable_courant_limit(s.viscosity, s.h_over_dx < 0.79);
-    EXPECT_LE(radius_at(s.h_over_dx, s.viscosity, limit), 1.0 + 1e-9)
-        << "h " << s.h_over_dx << " alpha " << s.viscosity << " C " << limit;
-    EXPECT_GT(radius_at(s.h_over_dx, s.viscosity, 1.1 * limit), 1.0 + 1e-6)
-        << "h " << s.h_over_dx << " alpha " << s.viscosity << " C " << 1.1 * limit;
+    EXPECT_LE(radius_at(s.h_over_dx, s.viscosity, limit, s.update), 1.0 + 1e-9)
+        << s.update << " h " << s.h_over_dx << " alpha " << s.viscosity << " C " << limit;
+    if (s.tight) {
+      EXPECT_GT(radius_at(s.h_over_dx, s.viscosity, 1.1 * limit, s.update), 1.0 + 1e-6)
+          << s.update << " h " << s.h_over_dx << " alpha " << s.viscosity << " C " << 1.1 * limit;
+    }
   }
 }
 

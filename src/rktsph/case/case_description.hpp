@@ -117,8 +117,14 @@ struct PoreFluidSpec {
   double solver_tolerance = 1e-8;           ///< relative residual of the conjugate gradient
   long solver_max_iterations = 0;           ///< 0: twice the number of nodes
   double laplacian_scale = 0.0;             ///< 0: computed so that L(|x|^2) = 2d in the interior
-  double checkerboard_stabilisation = 0.3;  ///< theta of the p_w checkerboard term (theory §6.6)
+  double checkerboard_stabilisation = 0.0;  ///< theta of the p_w checkerboard term (theory §6.6)
   SourceLocation where;
+};
+
+/// How the nodal stress is updated in step 2 (docs/theory.md §2.2).
+enum class StressUpdate {
+  HalfStep,      ///< thesis: the gradient of the stress points' half-step velocities (eq. 2.3)
+  MeanVelocity,  ///< the lumped average of G((v^n + v^{n+1})/2), the velocity of u (eq. 2.5)
 };
 
 /// The fields the hourglass filter acts on (docs/theory.md §3.3).
@@ -128,6 +134,11 @@ enum class HourglassFields {
   Velocity,  ///< the velocity only: equilibrium stress states stay fixed points
   All,       ///< every field (prototype R6); the total normal stress in the saturated model
 };
+
+/// epsilon of the cells' hourglass stiffness when the case does not set it (docs/theory.md §3.4):
+/// in cells of elastic materials, and of viscoplastic ones, where it must not resist a shear band.
+inline constexpr double kDefaultHourglassStiffness = 1.0;
+inline constexpr double kDefaultViscoplasticHourglassStiffness = 0.05;
 
 struct NumericsSpec {
   KernelType kernel = KernelType::CubicSpline;
@@ -142,9 +153,13 @@ struct NumericsSpec {
   double hourglass_kappa = 0.1;
   double hourglass_h_over_dx = 1.3;
   std::optional<HourglassFields> hourglass_fields;  ///< unset: from the stencil width
-  /// epsilon of the cells' hourglass stiffness (docs/theory.md eq. 3.3); 0 = off, the default
-  /// while the controls turn prestress relaxation into a slow creep (theory §3.4)
-  double hourglass_stiffness = 0.0;
+  /// unset: MeanVelocity in 2D, HalfStep in 1D (docs/theory.md §2.2)
+  std::optional<StressUpdate> stress_update;
+  /// epsilon of the cells' hourglass stiffness (docs/theory.md eqs. 3.3, 3.9); unset:
+  /// kDefaultHourglassStiffness with the mean-velocity update in 2D, else 0 (off)
+  std::optional<double> hourglass_stiffness;
+  /// psi of eq. 3.9: the fraction of the stiffness that acts in cells in viscoplastic flow
+  double hourglass_plastic_fraction = 0.0;
   /// epsilon_s of the strain hourglass stiffness (theory eq. 3.5), at most (1 - C^2)/C^2; 0 = off
   double strain_hourglass_stiffness = 0.0;
   double artificial_viscosity = 0.0;  ///< alpha of R7, 0 = off

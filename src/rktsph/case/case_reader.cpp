@@ -558,7 +558,7 @@ void CaseReader::read_numerics(const YamlNode& node) {
   attempt([&] {
     map.allow_only({"kernel", "h_over_dx", "interpolation_order", "courant", "time_step",
                     "source_coupling", "rk_substep_factor", "rk_max_substeps", "hourglass",
-                    "artificial_viscosity"});
+                    "artificial_viscosity", "stress_update"});
   });
   NumericsSpec& numerics = out_.numerics;
   numerics.where = map.where();
@@ -588,10 +588,15 @@ void CaseReader::read_numerics(const YamlNode& node) {
     numerics.rk_max_substeps =
         static_cast<int>(to_integer(*substeps, 1, std::numeric_limits<int>::max()));
   }
+  if (const YamlNode* update = map.find("stress_update")) {
+    numerics.stress_update = to_choice(*update, {"mean_velocity", "half_step"}) == "half_step"
+                                 ? StressUpdate::HalfStep
+                                 : StressUpdate::MeanVelocity;
+  }
   if (const YamlNode* hourglass_node = map.find("hourglass")) {
     const YamlMap hourglass(*hourglass_node);
-    hourglass.allow_only(
-        {"enabled", "kappa", "h_over_dx", "fields", "stiffness", "strain_stiffness"});
+    hourglass.allow_only({"enabled", "kappa", "h_over_dx", "fields", "stiffness",
+                          "plastic_fraction", "strain_stiffness"});
     if (const YamlNode* enabled = hourglass.find("enabled")) {
       numerics.hourglass_filter = to_bool(*enabled);
     }
@@ -608,6 +613,9 @@ void CaseReader::read_numerics(const YamlNode& node) {
     }
     if (const YamlNode* stiffness = hourglass.find("stiffness")) {
       numerics.hourglass_stiffness = to_number(*stiffness, kUnitInterval);
+    }
+    if (const YamlNode* fraction = hourglass.find("plastic_fraction")) {
+      numerics.hourglass_plastic_fraction = to_number(*fraction, kUnitInterval);
     }
     if (const YamlNode* stiffness = hourglass.find("strain_stiffness")) {
       numerics.strain_hourglass_stiffness = to_number(*stiffness, kUnitInterval);
@@ -1116,11 +1124,19 @@ void emit_numerics(YAML::Emitter& out, const NumericsSpec& numerics) {
       << (numerics.frozen_flux_source ? "frozen_flux" : "additive");
   out << YAML::Key << "rk_substep_factor" << YAML::Value << number(numerics.rk_substep_factor);
   out << YAML::Key << "rk_max_substeps" << YAML::Value << numerics.rk_max_substeps;
+  if (numerics.stress_update) {
+    out << YAML::Key << "stress_update" << YAML::Value
+        << (*numerics.stress_update == StressUpdate::HalfStep ? "half_step" : "mean_velocity");
+  }
   out << YAML::Key << "hourglass" << YAML::Value << YAML::Flow << YAML::BeginMap;
   out << YAML::Key << "enabled" << YAML::Value << (numerics.hourglass_filter ? "true" : "false");
   out << YAML::Key << "kappa" << YAML::Value << number(numerics.hourglass_kappa);
   out << YAML::Key << "h_over_dx" << YAML::Value << number(numerics.hourglass_h_over_dx);
-  out << YAML::Key << "stiffness" << YAML::Value << number(numerics.hourglass_stiffness);
+  if (numerics.hourglass_stiffness) {
+    out << YAML::Key << "stiffness" << YAML::Value << number(*numerics.hourglass_stiffness);
+  }
+  out << YAML::Key << "plastic_fraction" << YAML::Value
+      << number(numerics.hourglass_plastic_fraction);
   out << YAML::Key << "strain_stiffness" << YAML::Value
       << number(numerics.strain_hourglass_stiffness);
   if (numerics.hourglass_fields) {

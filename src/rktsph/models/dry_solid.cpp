@@ -396,6 +396,25 @@ void DrySolid::add_artificial_viscosity(std::span<const std::int32_t> material,
   }
 }
 
+void DrySolid::flowing(std::span<const std::int32_t> material, const FieldArray& values,
+                       const FieldArray& internal, std::span<std::uint8_t> flowing) const {
+  for (std::size_t i = 0; i < material.size(); ++i) {
+    const Material& m = *materials_[static_cast<std::size_t>(material[i])];
+    if (m.is_elastic()) {
+      flowing[i] = 0;
+      continue;
+    }
+    double kappa[kMaxInternal] = {};
+    for (int c = 0; c < m.internal_count(); ++c)
+      kappa[c] = internal(c, i);
+    flowing[i] =
+        m.flows(stress_tensor(values, i),
+                std::span<const double>(kappa, static_cast<std::size_t>(m.internal_count())))
+            ? 1
+            : 0;
+  }
+}
+
 void DrySolid::initial_internal(std::int32_t material, FieldArray& internal, std::size_t i) const {
   const Material& m = *materials_[material];
   double kappa[kMaxInternal] = {};

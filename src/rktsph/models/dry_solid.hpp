@@ -56,6 +56,9 @@ class DrySolid : public PhysicsModel {
   double max_wave_speed() const override;
   /// c_p of one material: sqrt(modulus / density) with the modulus of the kinematics.
   double wave_speed(std::int32_t material) const;
+  bool elastic(std::int32_t material) const override {
+    return materials_[static_cast<std::size_t>(material)]->is_elastic();
+  }
   double density(std::int32_t material) const override {
     return materials_[static_cast<std::size_t>(material)]->density();
   }
@@ -72,6 +75,8 @@ class DrySolid : public PhysicsModel {
   void add_artificial_viscosity(std::span<const std::int32_t> material, const FieldArray& gradient,
                                 double alpha_dx, FieldArray& values) const override;
   void initial_internal(std::int32_t material, FieldArray& internal, std::size_t i) const override;
+  void flowing(std::span<const std::int32_t> material, const FieldArray& values,
+               const FieldArray& internal, std::span<std::uint8_t> flowing) const override;
 
   Kinematics kinematics() const { return kinematics_; }
   const Material& material(std::int32_t index) const { return *materials_[index]; }

@@ -6,6 +6,7 @@
 // terms and moving nodes) and V3 (saturated, plus a pressure projection) differ only here.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -55,6 +56,8 @@ class PhysicsModel {
   /// Largest wave speed of the model [m/s] (the drained P-wave speed), for the Courant rule.
   virtual double max_wave_speed() const = 0;
 
+  /// True if material m is elastic (never flows).
+  virtual bool elastic(std::int32_t material) const = 0;
   /// Mass density of material m [kg/m3] (the mixture density in the saturated model).
   virtual double density(std::int32_t material) const = 0;
   /// In-plane elastic moduli of material m [Pa] (drained): {M', lambda', G} with
@@ -89,6 +92,14 @@ class PhysicsModel {
   virtual void add_artificial_viscosity(std::span<const std::int32_t> material,
                                         const FieldArray& gradient, double alpha_dx,
                                         FieldArray& values) const = 0;
+
+  /// flowing[i] = 1 where the material of point i is in viscoplastic flow at `values` and
+  /// `internal` (0 for elastic states and materials).
+  virtual void flowing(std::span<const std::int32_t> material, const FieldArray& values,
+                       const FieldArray& internal, std::span<std::uint8_t> flowing) const {
+    (void)material, (void)values, (void)internal;
+    std::fill(flowing.begin(), flowing.end(), std::uint8_t{0});
+  }
 
   /// Initial internal variables of point i.
   virtual void initial_internal(std::int32_t material, FieldArray& internal,

@@ -63,6 +63,28 @@ double strain_hourglass_stiffness(const NumericsSpec& numerics, double courant) 
   return epsilon;
 }
 
+// epsilon of docs/theory.md eq. 3.3, by default on in 2D with the mean-velocity stress update (1
+// in elastic cells, 0.1 in viscoplastic ones). With the half-step update the nodal stress and the
+// hourglass forces keep two memories of the motion, and a loaded body creeps while they drift
+// apart (theory §3.4), so that pair is refused.
+HourglassStrength hourglass_stiffness(const NumericsSpec& numerics, StressUpdate update,
+                                      int dimension) {
+  if (dimension < 2) return {};
+  if (!numerics.hourglass_stiffness)
+    return update == StressUpdate::MeanVelocity
+               ? HourglassStrength{kDefaultHourglassStiffness,
+                                   kDefaultViscoplasticHourglassStiffness}
+               : HourglassStrength{};
+  const double epsilon = *numerics.hourglass_stiffness;
+  if (epsilon > 0.0 && update != StressUpdate::MeanVelocity)
+    throw InputError(numerics.where, "numerics.hourglass.stiffness", fmt::format("{}", epsilon),
+                     "the hourglass stiffness needs the mean-velocity stress update: with "
+                     "stress_update: half_step the nodal stress and the hourglass forces drift "
+                     "apart and a loaded body creeps (docs/theory.md §3.4)",
+                     "0 with numerics.stress_update: half_step, or stress_update: mean_velocity");
+  return {epsilon, epsilon};
+}
+
 // The size of the lattice, estimated from the shapes in double before anything is allocated, so
 // that a wrong spacing or coordinate is refused at once instead of exhausting memory.
 NodeEstimate checked_node_estimate(const CaseDescription& description,
@@ -245,7 +267,11 @@ Simulation::Simulation(CaseDescription description, SimulationLimits limits)
   options.hourglass_kappa = numerics.hourglass_kappa;
   options.hourglass_h_over_dx = numerics.hourglass_h_over_dx;
   options.hourglass_fields = numerics.hourglass_fields;
-  options.hourglass_stiffness = numerics.hourglass_stiffness;
+  options.stress_update = numerics.stress_update.value_or(
+      nodes_.dimension >= 2 ? StressUpdate::MeanVelocity : StressUpdate::HalfStep);
+  options.hourglass_stiffness =
+      hourglass_stiffness(numerics, options.stress_update, nodes_.dimension);
+  options.hourglass_plastic_fraction = numerics.hourglass_plastic_fraction;
   options.strain_hourglass_stiffness =
       strain_hourglass_stiffness(numerics, time_step_ * model_->max_wave_speed() / nodes_.spacing);
   options.artificial_viscosity = numerics.artificial_viscosity;
@@ -281,6 +307,8 @@ void Simulation::initialise_state() {
   state_.internal = FieldArray(model_->internal_count(), n);
   state_.displacement = FieldArray(d, n);
   if (step_->strain_hourglass_stiffness().active()) state_.strain = FieldArray(3, n);
+  if (step_->hourglass_stiffness().active())
+    state_.hourglass_force = FieldArray(2, nodes_.stress_points.size());
   for (std::size_t i = 0; i < n; ++i) {
     for (int a = 0; a < d; ++a)
       state_.fields(model_->velocity_field(a), i) = description_.initial.velocity[a];
@@ -422,6 +450,7 @@ void Simulation::save_checkpoint(CheckpointOut& out) const {
   out.put_fields(state_.internal);
   out.put_fields(state_.displacement);
   out.put_fields(state_.strain);
+  out.put_fields(state_.hourglass_force);
   if (projection_) projection_->save_checkpoint(out);
 }
 
@@ -434,6 +463,7 @@ void Simulation::restore_checkpoint(CheckpointIn& in) {
   in.get_fields_into(state_.internal);
   in.get_fields_into(state_.displacement);
   in.get_fields_into(state_.strain);
+  in.get_fields_into(state_.hourglass_force);
   if (projection_) projection_->restore_checkpoint(in);
   resumed_ = true;
 }

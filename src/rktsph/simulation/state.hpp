@@ -16,6 +16,9 @@ struct State {
   /// with (xx, yy, xy), kept only when the strain hourglass stiffness is on (docs/theory.md eq.
   /// 3.5); empty otherwise.
   FieldArray strain;
+  /// The generalised hourglass force k q of every stress-point cell (x, y), advanced with the
+  /// velocity (docs/theory.md eq. 3.9); empty when the hourglass stiffness is off.
+  FieldArray hourglass_force;
 };
 
 }  // namespace rktsph

@@ -44,9 +44,9 @@ CellGeometry cell_geometry(const std::array<double, 4>& x, const std::array<doub
 }  // namespace
 
 HourglassStiffness build_hourglass_stiffness(const NodeSets& nodes, const PhysicsModel& model,
-                                             double epsilon) {
+                                             HourglassStrength epsilon) {
   HourglassStiffness control;
-  if (nodes.dimension != 2 || !(epsilon > 0.0)) return control;
+  if (nodes.dimension != 2 || !epsilon.active()) return control;
   const std::size_t cells = nodes.stress_points.size();
   const std::size_t count = nodes.sph_nodes.size();
   control.corners.resize(cells);
@@ -73,9 +73,11 @@ HourglassStiffness build_hourglass_stiffness(const NodeSets& nodes, const Physic
     }
     const CellGeometry cell = cell_geometry(x, y);
     control.gamma[p] = cell.gamma;
-    const auto moduli = model.in_plane_moduli(nodes.stress_point_material[p]);
+    const std::int32_t material = nodes.stress_point_material[p];
+    const auto moduli = model.in_plane_moduli(material);
+    const double fraction = model.elastic(material) ? epsilon.elastic : epsilon.viscoplastic;
     control.stiffness[p] =
-        epsilon * (moduli[0] + moduli[2]) * cell.area * cell.gradient_norm / 24.0;
+        fraction * (moduli[0] + moduli[2]) * cell.area * cell.gradient_norm / 24.0;
     for (std::int32_t node : control.corners[p]) {
       volume[static_cast<std::size_t>(node)] += 0.25 * cell.area;
       ++incidence[static_cast<std::size_t>(node) + 1];
@@ -100,28 +102,37 @@ HourglassStiffness build_hourglass_stiffness(const NodeSets& nodes, const Physic
   return control;
 }
 
-void add_hourglass_acceleration(const HourglassStiffness& control, const FieldArray& displacement,
-                                const std::array<int, 2>& velocity_field, FieldArray& coordinates,
-                                FieldArray& rate) {
+void advance_hourglass_force(const HourglassStiffness& control, const FieldArray& fields,
+                             const std::array<int, 2>& velocity_field, double interval,
+                             std::span<const double> factor, const FieldArray& force_in,
+                             FieldArray& force_out) {
   const auto cells = static_cast<std::int64_t>(control.corners.size());
-  const double* ux = displacement.field(0);
-  const double* uy = displacement.field(1);
-  double* force_x = coordinates.field(0);
-  double* force_y = coordinates.field(1);
-  // Generalised hourglass force k q of every cell (eqs. 3.2, 3.3).
+  const double* vx = fields.field(velocity_field[0]);
+  const double* vy = fields.field(velocity_field[1]);
+  const double* in_x = force_in.field(0);
+  const double* in_y = force_in.field(1);
+  double* out_x = force_out.field(0);
+  double* out_y = force_out.field(1);
 #pragma omp parallel for schedule(static) if (cells > kParallelThreshold)
   for (std::int64_t p = 0; p < cells; ++p) {
     const auto cell = static_cast<std::size_t>(p);
     double qx = 0.0, qy = 0.0;
     for (int a = 0; a < 4; ++a) {
       const auto node = static_cast<std::size_t>(control.corners[cell][a]);
-      qx += control.gamma[cell][a] * ux[node];
-      qy += control.gamma[cell][a] * uy[node];
+      qx += control.gamma[cell][a] * vx[node];
+      qy += control.gamma[cell][a] * vy[node];
     }
-    force_x[cell] = control.stiffness[cell] * qx;
-    force_y[cell] = control.stiffness[cell] * qy;
+    const double scale = interval * factor[cell] * control.stiffness[cell];
+    out_x[cell] = in_x[cell] + scale * qx;
+    out_y[cell] = in_y[cell] + scale * qy;
   }
-  // Its share at every node (eq. 3.4), gathered.
+}
+
+void add_hourglass_acceleration(const HourglassStiffness& control, const FieldArray& force,
+                                const std::array<int, 2>& velocity_field, FieldArray& rate) {
+  const double* force_x = force.field(0);
+  const double* force_y = force.field(1);
+  // The share of every cell's force at each node (eq. 3.4), gathered.
   const auto nodes = static_cast<std::int64_t>(control.inverse_mass.size());
   double* rate_x = rate.field(velocity_field[0]);
   double* rate_y = rate.field(velocity_field[1]);

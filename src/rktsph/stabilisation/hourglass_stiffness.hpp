@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "rktsph/core/field_array.hpp"
@@ -40,16 +41,29 @@ struct HourglassStiffness {
   bool active() const { return !stiffness.empty(); }
 };
 
-/// Builds the control for the cells of `nodes` at the current node positions; `epsilon` is the
-/// fraction of the fully integrated element's hourglass stiffness (0 = off).
-HourglassStiffness build_hourglass_stiffness(const NodeSets& nodes, const PhysicsModel& model,
-                                             double epsilon);
+/// The fraction epsilon of the fully integrated element's hourglass stiffness in cells of elastic
+/// and of viscoplastic materials (docs/theory.md §3.4); both 0 = off.
+struct HourglassStrength {
+  double elastic = 0.0;
+  double viscoplastic = 0.0;
+  bool active() const { return elastic > 0.0 || viscoplastic > 0.0; }
+};
 
-/// Adds the acceleration (3.4) of the displacement `displacement` (one field per axis) to the
-/// velocity rates `rate` (field velocity_field[a] for axis a). `coordinates` is scratch with two
-/// fields over the cells.
-void add_hourglass_acceleration(const HourglassStiffness& control, const FieldArray& displacement,
-                                const std::array<int, 2>& velocity_field, FieldArray& coordinates,
-                                FieldArray& rate);
+/// Builds the control for the cells of `nodes` at the current node positions.
+HourglassStiffness build_hourglass_stiffness(const NodeSets& nodes, const PhysicsModel& model,
+                                             HourglassStrength epsilon);
+
+/// force_out = force_in + interval * factor_P k_P gamma_P . v for every cell P: the generalised
+/// hourglass force k q advanced by the velocity `fields` (components velocity_field[a]) over
+/// `interval` (eq. 3.9); factor is 1 in elastic cells and the plastic fraction in flowing ones.
+void advance_hourglass_force(const HourglassStiffness& control, const FieldArray& fields,
+                             const std::array<int, 2>& velocity_field, double interval,
+                             std::span<const double> factor, const FieldArray& force_in,
+                             FieldArray& force_out);
+
+/// Adds the acceleration (3.4) of the cells' generalised hourglass forces `force` (two fields
+/// over the cells) to the velocity rates `rate` (field velocity_field[a] for axis a).
+void add_hourglass_acceleration(const HourglassStiffness& control, const FieldArray& force,
+                                const std::array<int, 2>& velocity_field, FieldArray& rate);
 
 }  // namespace rktsph

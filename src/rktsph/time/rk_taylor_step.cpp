@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "rktsph/core/error.hpp"
 
@@ -183,7 +184,9 @@ StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& opt
   // 1.00003-1.001 at h = 1.0-1.3 dx); the filter on every field keeps it below 1 (§3.3).
   ops.hourglass_fields = options.hourglass_fields.value_or(
       ops.compact_stencils ? HourglassFields::Velocity : HourglassFields::All);
+  ops.stress_update = options.stress_update;
   ops.hourglass_stiffness = options.hourglass_stiffness;
+  ops.hourglass_plastic_fraction = options.hourglass_plastic_fraction;
   ops.strain_hourglass_stiffness = options.strain_hourglass_stiffness;
   ops.viscosity_length = options.artificial_viscosity * dx;
   if (ops.hourglass_filter) {
@@ -230,10 +233,20 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
     for (int c = 0; c < d; ++c)
       gradient_parities_.push_back(
           static_cast<Parity>(model.parities()[static_cast<std::size_t>(f)] ^ (1u << c)));
+  std::vector<std::uint8_t> is_velocity(static_cast<std::size_t>(nf), 0);
+  for (int a = 0; a < d; ++a)
+    is_velocity[static_cast<std::size_t>(model.velocity_field(a))] = 1;
   for (int f = 0; f < nf; ++f) {
     if (operators_.hourglass_fields == HourglassFields::All || !model.feeds_momentum_only(f)) {
+      const Parity parity = model.parities()[static_cast<std::size_t>(f)];
       filtered_fields_.push_back(f);
-      filtered_parities_.push_back(model.parities()[static_cast<std::size_t>(f)]);
+      filtered_parities_.push_back(parity);
+      auto& part_fields = is_velocity[static_cast<std::size_t>(f)] ? filtered_velocity_fields_
+                                                                   : filtered_other_fields_;
+      auto& part_parities = is_velocity[static_cast<std::size_t>(f)] ? filtered_velocity_parities_
+                                                                     : filtered_other_parities_;
+      part_fields.push_back(f);
+      part_parities.push_back(parity);
     }
   }
   half_step_ = FieldArray(nf, nv + ns);
@@ -249,10 +262,36 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
   node_gradient_ = FieldArray(nf * d, ns);
   node_rate_ = FieldArray(nf, ns);
   hourglass_stiffness_ = build_hourglass_stiffness(nodes, model, operators_.hourglass_stiffness);
-  if (hourglass_stiffness_.active()) hourglass_force_ = FieldArray(2, nv);
+  if (hourglass_stiffness_.active()) {
+    hourglass_force_ = FieldArray(2, nv);
+    hourglass_factor_.assign(nv, 1.0);
+    point_flowing_.assign(nv, 0);
+  }
   strain_hourglass_stiffness_ = StrainHourglassStiffness(
       model, operators_.nodes_to_points, nodes.stress_points.volume, conditions.mirror_axes(),
       conditions.constrained_stress(), nodes.node_material, operators_.strain_hourglass_stiffness);
+  for (int a = 0; a < d; ++a)
+    velocity_parities_.push_back(
+        model.parities()[static_cast<std::size_t>(model.velocity_field(a))]);
+  for (int a = 0; a < d; ++a)
+    for (int c = 0; c < d; ++c)
+      velocity_gradient_parities_.push_back(
+          static_cast<Parity>(velocity_parities_[static_cast<std::size_t>(a)] ^ (1u << c)));
+  every_gradient_.assign(static_cast<std::size_t>(d * d), 1);
+  if (hourglass_stiffness_.active() || operators_.stress_update == StressUpdate::MeanVelocity)
+    mean_velocity_ = FieldArray(d, ns);
+  if (operators_.stress_update == StressUpdate::MeanVelocity) {
+    std::vector<std::int32_t> every_node(ns), no_own_value(ns, -1);
+    for (std::size_t i = 0; i < ns; ++i)
+      every_node[i] = static_cast<std::int32_t>(i);
+    node_average_ = build_adjoint_operator(operators_.nodes_to_points, nodes.stress_points.volume,
+                                           every_node, no_own_value);
+    start_fields_ = FieldArray(nf, ns);
+    start_internal_ = FieldArray(nk, ns);
+    end_velocity_ = FieldArray(d, ns);
+    mean_point_gradient_ = FieldArray(d * d, nv);
+    mean_node_gradient_ = FieldArray(d * d, ns);
+  }
   if (operators_.hourglass_filter) {
     const auto values = filtered_fields_.size();
     filter_values_.assign(values * ns, 0.0);
@@ -295,6 +334,11 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
   model_.flux_rate(nodes_.stress_point_material, point_gradient_, point_rate_);
   model_.advance(nodes_.stress_point_material, point_rate_, state.time, 0.5 * dt, half_step_,
                  point_internal_);
+  if (hourglass_stiffness_.active()) {
+    model_.flowing(nodes_.stress_point_material, half_step_, point_internal_, point_flowing_);
+    for (std::size_t p = 0; p < point_flowing_.size(); ++p)
+      hourglass_factor_[p] = point_flowing_[p] ? operators_.hourglass_plastic_fraction : 1.0;
+  }
   if (operators_.viscosity_length > 0.0)
     model_.add_artificial_viscosity(nodes_.stress_point_material, point_gradient_,
                                     operators_.viscosity_length, half_step_);
@@ -333,8 +377,9 @@ void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
 void RkTaylorStep::step_nodes(State& state, double dt) {
   const int d = model_.dimension();
   const std::size_t ns = nodes_.sph_nodes.size();
+  const bool mean_update = operators_.stress_update == StressUpdate::MeanVelocity;
   // Displacement by the trapezoidal rule: half with v^n now, the v^{n+1} half in advance(). The
-  // zero-energy controls act on this u^{n+1/2} (docs/theory.md §3.4).
+  // strain hourglass stiffness acts on this u^{n+1/2} (docs/theory.md §3.4).
   for (int a = 0; a < d; ++a) {
     const double* v = state.fields.field(model_.velocity_field(a));
     double* u = state.displacement.field(a);
@@ -349,26 +394,81 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   apply_operator(operators_.points_to_nodes, half_step_, model_.parities(), nullptr,
                  &node_gradient_);
   close_incomplete_nodes(state);
-  strain_hourglass_stiffness_.integrate_strain(model_, node_gradient_, dt, state.strain);
+  if (!mean_update)
+    strain_hourglass_stiffness_.integrate_strain(model_, node_gradient_, dt, state.strain);
   model_.flux_rate(nodes_.node_material, node_gradient_, node_rate_);
   const auto& boundary = operators_.boundary_nodes;
   const int nf = model_.field_count();
   for (std::size_t r = 0; r < boundary.size(); ++r)
     for (int f = 0; f < nf; ++f)
       boundary_start_(f, r) = state.fields(f, static_cast<std::size_t>(boundary[r]));
-
-  // The cells' hourglass stiffness acts on u^{n+1/2} = u^n + dt v^n / 2 (docs/theory.md §3.4).
-  if (hourglass_stiffness_.active())
-    add_hourglass_acceleration(hourglass_stiffness_, state.displacement,
-                               {model_.velocity_field(0), model_.velocity_field(1)},
-                               hourglass_force_, node_rate_);
+  if (mean_velocity_.field_count() > 0)
+    for (int a = 0; a < d; ++a)
+      std::copy_n(state.fields.field(model_.velocity_field(a)), ns, mean_velocity_.field(a));
+  // The cells' hourglass forces at t + dt/2 (docs/theory.md eq. 3.9).
+  if (hourglass_stiffness_.active()) {
+    const std::array<int, 2> velocity{model_.velocity_field(0), model_.velocity_field(1)};
+    advance_hourglass_force(hourglass_stiffness_, state.fields, velocity, 0.5 * dt,
+                            hourglass_factor_, state.hourglass_force, hourglass_force_);
+    add_hourglass_acceleration(hourglass_stiffness_, hourglass_force_, velocity, node_rate_);
+  }
+  if (mean_update) {
+    std::copy(state.fields.data().begin(), state.fields.data().end(), start_fields_.data().begin());
+    std::copy(state.internal.data().begin(), state.internal.data().end(),
+              start_internal_.data().begin());
+  }
   model_.advance(nodes_.node_material, node_rate_, state.time, dt, state.fields, state.internal);
   project_free_faces(boundary_start_, state.fields, false);
   conditions_.apply(state.time + dt, state.fields);
   if (operators_.hourglass_filter) {
     // After the conditions: a fixed node's pre-condition velocity carries its reaction, which the
     // round trip would otherwise spread to its neighbours; then again, as the filter moves them.
-    filter_hourglass(state.fields);
+    // With the mean-velocity update the other fields are filtered after they are redone.
+    filter_hourglass(state.fields, mean_update ? FilterPart::Velocity : FilterPart::All);
+    conditions_.apply(state.time + dt, state.fields);
+  }
+  if (mean_velocity_.field_count() > 0)  // (v^n + v^{n+1})/2
+    for (int a = 0; a < d; ++a) {
+      double* mean = mean_velocity_.field(a);
+      const double* end = state.fields.field(model_.velocity_field(a));
+      for (std::size_t i = 0; i < ns; ++i)
+        mean[i] = 0.5 * (mean[i] + end[i]);
+    }
+  if (mean_update) advance_stress_with_mean_velocity(state, dt);
+  if (hourglass_stiffness_.active())
+    advance_hourglass_force(hourglass_stiffness_, mean_velocity_, {0, 1}, dt, hourglass_factor_,
+                            state.hourglass_force, state.hourglass_force);
+}
+
+void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
+  // docs/theory.md eq. 2.5: every field but the velocity is advanced again from Phi^n, with the
+  // strain rate the lumped average of the stress points' gradients of the mean velocity, which is
+  // the velocity the displacement is integrated with; so the nodal strain is A G u exactly.
+  const int d = model_.dimension();
+  const std::size_t ns = nodes_.sph_nodes.size();
+  for (int a = 0; a < d; ++a)
+    std::copy_n(state.fields.field(model_.velocity_field(a)), ns, end_velocity_.field(a));
+  apply_operator(operators_.nodes_to_points, mean_velocity_, velocity_parities_, nullptr,
+                 &mean_point_gradient_);
+  std::fill(mean_node_gradient_.data().begin(), mean_node_gradient_.data().end(), 0.0);
+  add_adjoint_interpolation(node_average_, mean_point_gradient_, velocity_gradient_parities_,
+                            every_gradient_, mean_node_gradient_);
+  for (int a = 0; a < d; ++a)
+    for (int c = 0; c < d; ++c)
+      std::copy_n(mean_node_gradient_.field(a * d + c), ns,
+                  node_gradient_.field(model_.velocity_field(a) * d + c));
+  std::copy(start_fields_.data().begin(), start_fields_.data().end(), state.fields.data().begin());
+  std::copy(start_internal_.data().begin(), start_internal_.data().end(),
+            state.internal.data().begin());
+  strain_hourglass_stiffness_.integrate_strain(model_, node_gradient_, dt, state.strain);
+  model_.flux_rate(nodes_.node_material, node_gradient_, node_rate_);
+  model_.advance(nodes_.node_material, node_rate_, state.time, dt, state.fields, state.internal);
+  for (int a = 0; a < d; ++a)
+    std::copy_n(end_velocity_.field(a), ns, state.fields.field(model_.velocity_field(a)));
+  project_free_faces(boundary_start_, state.fields, false);
+  conditions_.apply(state.time + dt, state.fields);
+  if (operators_.hourglass_filter && operators_.hourglass_fields == HourglassFields::All) {
+    filter_hourglass(state.fields, FilterPart::OtherFields);
     conditions_.apply(state.time + dt, state.fields);
   }
 }
@@ -420,14 +520,23 @@ void RkTaylorStep::project_free_faces(const FieldArray& start, FieldArray& value
   }
 }
 
-void RkTaylorStep::filter_hourglass(FieldArray& fields) {
+void RkTaylorStep::filter_hourglass(FieldArray& fields, FilterPart part) {
   if (!operators_.hourglass_filter) return;
   // Saturated model: sigma' and p_w both jump at a drained face while the total stress does not;
   // filtering them separately spreads that boundary layer and drains undrained soil. So the
   // filter acts on the total normal stress sigma'_aa - alpha p_w and leaves p_w untouched
   // (docs/theory.md §6.5).
   const int pore =
-      operators_.hourglass_fields == HourglassFields::All ? model_.pore_pressure_field() : -1;
+      operators_.hourglass_fields == HourglassFields::All && part != FilterPart::Velocity
+          ? model_.pore_pressure_field()
+          : -1;
+  const std::vector<int>& list = part == FilterPart::All        ? filtered_fields_
+                                 : part == FilterPart::Velocity ? filtered_velocity_fields_
+                                                                : filtered_other_fields_;
+  const std::vector<Parity>& parities = part == FilterPart::All        ? filtered_parities_
+                                        : part == FilterPart::Velocity ? filtered_velocity_parities_
+                                                                       : filtered_other_parities_;
+  if (list.empty()) return;
   const std::size_t count_nodes = nodes_.sph_nodes.size();
   const double alpha = model_.biot_coefficient();
   auto shift_normal_stress = [&](double sign) {
@@ -448,13 +557,12 @@ void RkTaylorStep::filter_hourglass(FieldArray& fields) {
   // (docs/theory.md §3.3; symbol 1 - kappa (1 - a^2)^2, removes the checkerboard).
   // The round trip works on node-major (interleaved) copies: its gathers reach ~21 sources per
   // row, and one cache line then brings all the fields of a source (3x faster on large lattices).
-  const auto nf = static_cast<int>(filtered_fields_.size());
-  const int* filtered = filtered_fields_.data();
+  const auto nf = static_cast<int>(list.size());
+  const int* filtered = list.data();
   const auto nodes = static_cast<std::int64_t>(count_nodes);
   auto round_trip = [&](const std::vector<double>& in) {
-    apply_interpolation_interleaved(operators_.filter_to_points, in, filtered_parities_,
-                                    filter_points_);
-    apply_interpolation_interleaved(operators_.filter_to_nodes, filter_points_, filtered_parities_,
+    apply_interpolation_interleaved(operators_.filter_to_points, in, parities, filter_points_);
+    apply_interpolation_interleaved(operators_.filter_to_nodes, filter_points_, parities,
                                     filter_round_trip_);
   };
   double* values = filter_values_.data();
@@ -465,7 +573,7 @@ void RkTaylorStep::filter_hourglass(FieldArray& fields) {
   round_trip(filter_values_);
   double* residual = filter_residual_.data();
   const double* trip = filter_round_trip_.data();
-  const auto count = static_cast<std::int64_t>(filter_values_.size());
+  const auto count = nodes * nf;
 #pragma omp parallel for schedule(static) if (count > kParallelThreshold)
   for (std::int64_t k = 0; k < count; ++k)
     residual[k] = values[k] - trip[k];

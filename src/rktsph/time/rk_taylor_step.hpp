@@ -32,9 +32,11 @@ struct StepOptions {
   double hourglass_kappa = 0.1;
   double hourglass_h_over_dx = 1.3;
   std::optional<HourglassFields> hourglass_fields;  // unset: Velocity on compact stencils, else All
-  double hourglass_stiffness = 0.0;                 // epsilon of docs/theory.md eq. 3.3; 0 = off
-  double strain_hourglass_stiffness = 0.0;          // epsilon_s of docs/theory.md eq. 3.5; 0 = off
-  double artificial_viscosity = 0.0;                // alpha of prototype R7; 0 = off
+  StressUpdate stress_update = StressUpdate::HalfStep;
+  HourglassStrength hourglass_stiffness;    // epsilon of docs/theory.md eq. 3.3; 0 = off
+  double hourglass_plastic_fraction = 0.0;  // psi of eq. 3.9, in flowing cells
+  double strain_hourglass_stiffness = 0.0;  // epsilon_s of docs/theory.md eq. 3.5; 0 = off
+  double artificial_viscosity = 0.0;        // alpha of prototype R7; 0 = off
 };
 
 /// The operator tables of the step and the classification of nodes they imply.
@@ -50,7 +52,9 @@ struct StepOperators {
   bool hourglass_filter = false;
   double hourglass_kappa = 0.0;
   HourglassFields hourglass_fields = HourglassFields::Velocity;
-  double hourglass_stiffness = 0.0;         ///< epsilon of the cells' hourglass stiffness (eq. 3.3)
+  StressUpdate stress_update = StressUpdate::HalfStep;
+  HourglassStrength hourglass_stiffness;    ///< epsilon of the cells' hourglass stiffness (eq. 3.3)
+  double hourglass_plastic_fraction = 0.0;  ///< psi of eq. 3.9
   double strain_hourglass_stiffness = 0.0;  ///< epsilon_s of eq. 3.5
   /// Every stress point's stencil is its own cell's corners (h small enough): the lattice
   /// operators then commute in the interior (docs/theory.md §5.3).
@@ -96,7 +100,7 @@ class RkTaylorStep {
   }
   void set_projection(StepProjection* projection) { projection_ = projection; }
   /// Applies the hourglass filter of step 3 alone (docs/theory.md eq. 3.1); no-op when it is off.
-  void filter_hourglass(FieldArray& fields);
+  void filter_hourglass(FieldArray& fields) { filter_hourglass(fields, FilterPart::All); }
 
  private:
   void step_stress_points(const State& state, double dt);
@@ -104,6 +108,10 @@ class RkTaylorStep {
   void step_nodes(State& state, double dt);
   void project_free_faces(const FieldArray& start, FieldArray& values, bool boundary_rows) const;
   void close_incomplete_nodes(const State& state);
+  void advance_stress_with_mean_velocity(State& state, double dt);
+  void advance_hourglass_forces(State& state, double dt);
+  enum class FilterPart { All, Velocity, OtherFields };
+  void filter_hourglass(FieldArray& fields, FilterPart part);
 
   const PhysicsModel& model_;
   const NodeSets& nodes_;
@@ -120,6 +128,8 @@ class RkTaylorStep {
   std::vector<Parity> gradient_parities_;               // of each gradient field f * d + c
   std::vector<int> filtered_fields_;                    // the fields the hourglass filter acts on
   std::vector<Parity> filtered_parities_;
+  std::vector<int> filtered_velocity_fields_, filtered_other_fields_;  // the two parts of it
+  std::vector<Parity> filtered_velocity_parities_, filtered_other_parities_;
 
   // Scratch, allocated once.
   FieldArray half_step_;  // [stress points ; SPH nodes] at t + dt/2
@@ -134,12 +144,25 @@ class RkTaylorStep {
   FieldArray boundary_internal_;
   FieldArray node_gradient_;
   FieldArray node_rate_;
-  FieldArray hourglass_force_;         // k q of every cell (docs/theory.md eq. 3.4)
-  std::vector<double> filter_values_;  // node-major copies for the filter's round trip
+  FieldArray hourglass_force_;               // k q of every cell at t + dt/2 (eq. 3.9)
+  std::vector<double> hourglass_factor_;     // 1, or psi in flowing cells
+  std::vector<std::uint8_t> point_flowing_;  // of the stress points' half-step state
+  std::vector<double> filter_values_;        // node-major copies for the filter's round trip
   std::vector<double> filter_points_;
   std::vector<double> filter_round_trip_;
   std::vector<double> filter_residual_;
   std::vector<double> pore_buffer_;  // p_w kept out of the filter (saturated model)
+  // The mean-velocity stress update (eq. 2.5) and the hourglass forces (eq. 3.9).
+  AdjointOperator node_average_;  // lumped average over every node
+  FieldArray start_fields_;       // Phi^n and kappa^n, to redo the stress update
+  FieldArray start_internal_;
+  FieldArray end_velocity_;         // v^{n+1} kept while the stresses are redone
+  FieldArray mean_velocity_;        // v^n, then (v^n + v^{n+1})/2
+  FieldArray mean_point_gradient_;  // G of it at the stress points
+  FieldArray mean_node_gradient_;   // its lumped average at the nodes
+  std::vector<Parity> velocity_parities_;
+  std::vector<Parity> velocity_gradient_parities_;
+  std::vector<std::uint8_t> every_gradient_;
 };
 
 }  // namespace rktsph

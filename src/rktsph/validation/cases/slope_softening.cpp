@@ -94,8 +94,10 @@ void report_softening(ValidationReport& report, const std::vector<const Softenin
 
 std::vector<CheckResult> validate_slope_softening(const ValidationContext& context) {
   std::vector<CaseOverride> base = {{"output.interval", "0"}};
-  if (context.quick) base.push_back({"geometry.spacing", "1.0"});  // 10 cells over H
-  const double end_time = 12.0;                                    // as in case.yaml
+  // Quick: 20 cells over H (the full case has 40). At 10 the band is a tenth of the cut and the
+  // cells' hourglass stiffness holds it: the mild cut does not fail within the run (README.md).
+  if (context.quick) base.push_back({"geometry.spacing", "0.5"});
+  const double end_time = 12.0;  // as in case.yaml
   const SofteningRun strong_run = failure_time(context, base, -1.0e6);
   const SofteningRun mild_run = failure_time(context, base, -2.5e5);
   if (context.report) report_softening(*context.report, {&strong_run, &mild_run}, end_time);
