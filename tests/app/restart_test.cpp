@@ -252,7 +252,7 @@ TEST_F(RestartRefusal, OtherFormatVersionIsRefused) {
   write_bytes(checkpoint(), bytes);
   expect_refused(restart(),
                  "checkpoint format version 99, but this build of rktsph reads only "
-                 "version 1");
+                 "version 2");
 }
 
 TEST_F(RestartRefusal, TruncatedCheckpointIsRefused) {

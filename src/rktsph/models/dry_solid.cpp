@@ -297,7 +297,8 @@ void DrySolid::advance_stress(const Material& material, const double* rate_sigma
 }
 
 void DrySolid::advance(std::span<const std::int32_t> material, const FieldArray& rate, double time,
-                       double interval, FieldArray& values, FieldArray& internal) const {
+                       double interval, FieldArray& values, FieldArray& internal,
+                       AdvancedFields part) const {
   const auto n = static_cast<std::int64_t>(material.size());
   const int d = dimension();
   const int ns = stress_count_;
@@ -305,14 +306,17 @@ void DrySolid::advance(std::span<const std::int32_t> material, const FieldArray&
 #pragma omp parallel for schedule(static) if (n > kParallelThreshold)
   for (std::int64_t i = 0; i < n; ++i) {
     const Material& m = *materials_[material[i]];
-    double v[3] = {}, rate_v[3] = {};
-    for (int a = 0; a < d; ++a) {
-      v[a] = values.field(a)[i];
-      rate_v[a] = rate.field(a)[i];
+    if (part != AdvancedFields::Others) {
+      double v[3] = {}, rate_v[3] = {};
+      for (int a = 0; a < d; ++a) {
+        v[a] = values.field(a)[i];
+        rate_v[a] = rate.field(a)[i];
+      }
+      advance_velocity(rate_v, time, interval, v);
+      for (int a = 0; a < d; ++a)
+        values.field(a)[i] = v[a];
     }
-    advance_velocity(rate_v, time, interval, v);
-    for (int a = 0; a < d; ++a)
-      values.field(a)[i] = v[a];
+    if (part == AdvancedFields::Velocity) continue;
 
     double sigma[kMaxStress], rate_sigma[kMaxStress], kappa[kMaxInternal] = {};
     for (int c = 0; c < ns; ++c) {

@@ -68,7 +68,8 @@ class DrySolid : public PhysicsModel {
   void flux_rate(std::span<const std::int32_t> material, const FieldArray& gradient,
                  FieldArray& rate) const override;
   void advance(std::span<const std::int32_t> material, const FieldArray& rate, double time,
-               double interval, FieldArray& values, FieldArray& internal) const override;
+               double interval, FieldArray& values, FieldArray& internal,
+               AdvancedFields part = AdvancedFields::All) const override;
   void project_normal_stress_increment(std::int32_t material, std::uint8_t normal_axes,
                                        std::span<const double> start, FieldArray& values,
                                        std::size_t i) const override;

@@ -18,6 +18,9 @@
 
 namespace rktsph {
 
+/// Which unknowns PhysicsModel::advance advances.
+enum class AdvancedFields { All, Velocity, Others };
+
 class PhysicsModel {
  public:
   virtual ~PhysicsModel() = default;
@@ -77,8 +80,11 @@ class PhysicsModel {
 
   /// Advances `values` and `internal` of points [0, material.size()) from `time` over `interval`
   /// with the flux rate frozen: y' = rate + S(y, kappa, t).
+  /// `part` restricts the advance to the velocity, or to every other field and the internal
+  /// variables (the mean-velocity stress update advances them apart, docs/theory.md eq. 2.5).
   virtual void advance(std::span<const std::int32_t> material, const FieldArray& rate, double time,
-                       double interval, FieldArray& values, FieldArray& internal) const = 0;
+                       double interval, FieldArray& values, FieldArray& internal,
+                       AdvancedFields part = AdvancedFields::All) const = 0;
 
   /// Makes the stress increment of point i (now `values`, before `start`) traction-free along the
   /// axes in `normal_axes` (bit a: a face with normal along a): the normal strain is whatever keeps

@@ -288,7 +288,6 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
                                            every_node, no_own_value);
     start_fields_ = FieldArray(nf, ns);
     start_internal_ = FieldArray(nk, ns);
-    end_velocity_ = FieldArray(d, ns);
     mean_point_gradient_ = FieldArray(d * d, nv);
     mean_node_gradient_ = FieldArray(d * d, ns);
   }
@@ -412,12 +411,16 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
                             hourglass_factor_, state.hourglass_force, hourglass_force_);
     add_hourglass_acceleration(hourglass_stiffness_, hourglass_force_, velocity, node_rate_);
   }
-  if (mean_update) {
-    std::copy(state.fields.data().begin(), state.fields.data().end(), start_fields_.data().begin());
+  if (mean_update) {  // Phi^n of the fields advanced after the velocity (eq. 2.5)
+    for (int f = 0; f < nf; ++f)
+      if (model_.feeds_momentum_only(f))
+        std::copy_n(state.fields.field(f), ns, start_fields_.field(f));
     std::copy(state.internal.data().begin(), state.internal.data().end(),
               start_internal_.data().begin());
   }
-  model_.advance(nodes_.node_material, node_rate_, state.time, dt, state.fields, state.internal);
+  // With the mean-velocity update only the velocity is advanced here; the rest after it (eq. 2.5).
+  model_.advance(nodes_.node_material, node_rate_, state.time, dt, state.fields, state.internal,
+                 mean_update ? AdvancedFields::Velocity : AdvancedFields::All);
   project_free_faces(boundary_start_, state.fields, false);
   conditions_.apply(state.time + dt, state.fields);
   if (operators_.hourglass_filter) {
@@ -441,13 +444,13 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
 }
 
 void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
-  // docs/theory.md eq. 2.5: every field but the velocity is advanced again from Phi^n, with the
-  // strain rate the lumped average of the stress points' gradients of the mean velocity, which is
-  // the velocity the displacement is integrated with; so the nodal strain is A G u exactly.
+  // docs/theory.md eq. 2.5: every field but the velocity is advanced from Phi^n (the conditions of
+  // t + dt have touched it) with the strain rate the lumped average of the stress points'
+  // gradients of the mean velocity, the velocity the displacement is integrated with; so the nodal
+  // strain is A G u exactly.
   const int d = model_.dimension();
+  const int nf = model_.field_count();
   const std::size_t ns = nodes_.sph_nodes.size();
-  for (int a = 0; a < d; ++a)
-    std::copy_n(state.fields.field(model_.velocity_field(a)), ns, end_velocity_.field(a));
   apply_operator(operators_.nodes_to_points, mean_velocity_, velocity_parities_, nullptr,
                  &mean_point_gradient_);
   std::fill(mean_node_gradient_.data().begin(), mean_node_gradient_.data().end(), 0.0);
@@ -457,14 +460,14 @@ void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
     for (int c = 0; c < d; ++c)
       std::copy_n(mean_node_gradient_.field(a * d + c), ns,
                   node_gradient_.field(model_.velocity_field(a) * d + c));
-  std::copy(start_fields_.data().begin(), start_fields_.data().end(), state.fields.data().begin());
+  for (int f = 0; f < nf; ++f)
+    if (model_.feeds_momentum_only(f)) std::copy_n(start_fields_.field(f), ns, state.fields.field(f));
   std::copy(start_internal_.data().begin(), start_internal_.data().end(),
             state.internal.data().begin());
   strain_hourglass_stiffness_.integrate_strain(model_, node_gradient_, dt, state.strain);
   model_.flux_rate(nodes_.node_material, node_gradient_, node_rate_);
-  model_.advance(nodes_.node_material, node_rate_, state.time, dt, state.fields, state.internal);
-  for (int a = 0; a < d; ++a)
-    std::copy_n(end_velocity_.field(a), ns, state.fields.field(model_.velocity_field(a)));
+  model_.advance(nodes_.node_material, node_rate_, state.time, dt, state.fields, state.internal,
+                 AdvancedFields::Others);
   project_free_faces(boundary_start_, state.fields, false);
   conditions_.apply(state.time + dt, state.fields);
   if (operators_.hourglass_filter && operators_.hourglass_fields == HourglassFields::All) {

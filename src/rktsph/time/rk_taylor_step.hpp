@@ -156,7 +156,6 @@ class RkTaylorStep {
   AdjointOperator node_average_;  // lumped average over every node
   FieldArray start_fields_;       // Phi^n and kappa^n, to redo the stress update
   FieldArray start_internal_;
-  FieldArray end_velocity_;         // v^{n+1} kept while the stresses are redone
   FieldArray mean_velocity_;        // v^n, then (v^n + v^{n+1})/2
   FieldArray mean_point_gradient_;  // G of it at the stress points
   FieldArray mean_node_gradient_;   // its lumped average at the nodes
