@@ -17,24 +17,35 @@ namespace rktsph::test {
 /// column; unknown k is measured in units of scale[k] (1 when `scale` is empty). `dt` 0: the
 /// simulation's time step (another is for probing beyond the limits a case may ask for).
 inline Eigen::MatrixXd step_matrix(Simulation& simulation, Eigen::Index size,
-                                   const std::vector<double>& scale = {}, double dt = 0.0) {
+                                   const std::vector<double>& scale = {}, double dt = 0.0);
+
+/// The matrix of the one-step map on `size` unknowns, unknown k being slot(k) in units of unit(k),
+/// built column by column from a state that is zero elsewhere.
+template <class Slot, class Unit>
+Eigen::MatrixXd step_matrix_over(Simulation& simulation, Eigen::Index size, Slot slot, Unit unit,
+                                 double dt) {
   State& state = simulation.state();
-  auto unit = [&](Eigen::Index k) {
-    return scale.empty() ? 1.0 : scale[static_cast<std::size_t>(k)];
-  };
   Eigen::MatrixXd matrix(size, size);
   for (Eigen::Index column = 0; column < size; ++column) {
-    std::fill(state.fields.data().begin(), state.fields.data().end(), 0.0);
-    std::fill(state.displacement.data().begin(), state.displacement.data().end(), 0.0);
-    std::fill(state.strain.data().begin(), state.strain.data().end(), 0.0);
-    std::fill(state.hourglass_force.data().begin(), state.hourglass_force.data().end(), 0.0);
-    state.fields.data()[static_cast<std::size_t>(column)] = unit(column);
+    for (FieldArray* part :
+         {&state.fields, &state.displacement, &state.strain, &state.hourglass_force})
+      std::fill(part->data().begin(), part->data().end(), 0.0);
+    slot(column) = unit(column);
     state.time = 0.0;
     simulation.step().advance(state, dt > 0.0 ? dt : simulation.time_step());
     for (Eigen::Index row = 0; row < size; ++row)
-      matrix(row, column) = state.fields.data()[static_cast<std::size_t>(row)] / unit(row);
+      matrix(row, column) = slot(row) / unit(row);
   }
   return matrix;
+}
+
+inline Eigen::MatrixXd step_matrix(Simulation& simulation, Eigen::Index size,
+                                   const std::vector<double>& scale, double dt) {
+  State& state = simulation.state();
+  return step_matrix_over(
+      simulation, size,
+      [&](Eigen::Index k) -> double& { return state.fields.data()[static_cast<std::size_t>(k)]; },
+      [&](Eigen::Index k) { return scale.empty() ? 1.0 : scale[static_cast<std::size_t>(k)]; }, dt);
 }
 
 /// The state of the zero-energy controls' step (docs/theory.md §3.4): every field, then the
@@ -104,25 +115,13 @@ inline Eigen::MatrixXd step_matrix_with_forces(Simulation& simulation, double fo
   const auto fields =
       static_cast<Eigen::Index>((state.fields.field_count() - 1) * state.fields.point_count());
   const auto forces = static_cast<Eigen::Index>(state.hourglass_force.data().size());
-  const Eigen::Index size = fields + forces;
-  auto slot = [&](Eigen::Index k) -> double& {
-    return k < fields ? state.fields.data()[static_cast<std::size_t>(k)]
-                      : state.hourglass_force.data()[static_cast<std::size_t>(k - fields)];
-  };
-  auto unit = [&](Eigen::Index k) { return k < fields ? 1.0 : force_unit; };
-  Eigen::MatrixXd matrix(size, size);
-  for (Eigen::Index column = 0; column < size; ++column) {
-    std::fill(state.fields.data().begin(), state.fields.data().end(), 0.0);
-    std::fill(state.displacement.data().begin(), state.displacement.data().end(), 0.0);
-    std::fill(state.strain.data().begin(), state.strain.data().end(), 0.0);
-    std::fill(state.hourglass_force.data().begin(), state.hourglass_force.data().end(), 0.0);
-    slot(column) = unit(column);
-    state.time = 0.0;
-    simulation.step().advance(state, dt > 0.0 ? dt : simulation.time_step());
-    for (Eigen::Index row = 0; row < size; ++row)
-      matrix(row, column) = slot(row) / unit(row);
-  }
-  return matrix;
+  return step_matrix_over(
+      simulation, fields + forces,
+      [&](Eigen::Index k) -> double& {
+        return k < fields ? state.fields.data()[static_cast<std::size_t>(k)]
+                          : state.hourglass_force.data()[static_cast<std::size_t>(k - fields)];
+      },
+      [&](Eigen::Index k) { return k < fields ? 1.0 : force_unit; }, dt);
 }
 
 /// Spectral radius of the one-step map of the fields (sigma_zz left out) and, when the hourglass
