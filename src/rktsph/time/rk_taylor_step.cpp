@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "rktsph/core/error.hpp"
 
@@ -461,7 +460,8 @@ void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
       std::copy_n(mean_node_gradient_.field(a * d + c), ns,
                   node_gradient_.field(model_.velocity_field(a) * d + c));
   for (int f = 0; f < nf; ++f)
-    if (model_.feeds_momentum_only(f)) std::copy_n(start_fields_.field(f), ns, state.fields.field(f));
+    if (model_.feeds_momentum_only(f))
+      std::copy_n(start_fields_.field(f), ns, state.fields.field(f));
   std::copy(start_internal_.data().begin(), start_internal_.data().end(),
             state.internal.data().begin());
   strain_hourglass_stiffness_.integrate_strain(model_, node_gradient_, dt, state.strain);

@@ -3,6 +3,10 @@
 //   1b  boundary nodes: Phi^{n+1/2} = Phi^n + RK[frozen R(G_SS(Phi^n))] over dt/2, then BCs
 //   2   SPH nodes:      Phi^{n+1}   = Phi^n + RK[frozen R(G(Phi^{n+1/2}))] over dt
 //   3   boundary conditions at t + dt, hourglass filter (2D), again the conditions, displacement.
+// With the mean-velocity stress update (the 2D default, docs/theory.md eq. 2.5) step 2 advances
+// the velocity only; every other field is then advanced from Phi^n with the lumped average of the
+// stress points' gradients of (v^n + v^{n+1})/2, the velocity of the displacement, and the cells'
+// hourglass forces (eq. 3.9) with the same velocity.
 // At nodes whose cells are incomplete the momentum balance is the adjoint of the stress points'
 // velocity gradient, and the level-n part of the strain rate is the lumped average of theirs
 // (docs/theory.md §5.3).
