@@ -26,15 +26,15 @@ const std::map<std::string, std::string>& known_open_problems() {
 // once the problem is solved; `rktsph validate` reports them as failed. The footing driven into a
 // plastic, saturated cut: under the undrained plastic flow at its edge the contact pressure keeps
 // an odd-even pattern (the hourglass stiffness is kept low in viscoplastic cells so as not to
-// resist shear bands), and after the footing stops the surface keeps settling smoothly as the pore
-// pressure drains (docs/theory.md §3.4, "Still open").
+// resist shear bands), and after the footing stops the surface keeps settling smoothly, slowly, for
+// a cause not found yet (docs/theory.md §3.4, "Still open").
 const std::map<std::string, std::map<std::string, std::string>>& known_open_checks() {
   static const std::string plastic_edge =
       "an odd-even contact pressure under the undrained plastic flow at the footing's edge "
       "(docs/theory.md §3.4, still open)";
   static const std::string drainage =
-      "a smooth settlement of the whole surface while the pore pressure drains after the footing "
-      "stops (docs/theory.md §3.4, still open)";
+      "a smooth, slowly decaying settlement of the whole surface after the footing stops, "
+      "independent of the permeability (docs/theory.md §3.4, still open)";
   static const std::map<std::string, std::map<std::string, std::string>> checks = {
       {"hanging-beam",
        {{"hourglass_velocity_ratio",

@@ -306,6 +306,7 @@ void RkTaylorStep::advance(State& state, double dt) {
   step_boundary_nodes(state, dt);
   step_nodes(state, dt);
   if (projection_) projection_->project(state, state.time + dt, dt);
+  finish_with_mean_velocity(state, dt);
   // Displacement by the trapezoidal rule: the v^n half was added in step 2.
   const std::size_t ns = nodes_.sph_nodes.size();
   for (int a = 0; a < model_.dimension(); ++a) {
@@ -429,6 +430,12 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
     filter_hourglass(state.fields, mean_update ? FilterPart::Velocity : FilterPart::All);
     conditions_.apply(state.time + dt, state.fields);
   }
+}
+
+void RkTaylorStep::finish_with_mean_velocity(State& state, double dt) {
+  // After the projection of the saturated model, so that v^{n+1} is the velocity u moves with.
+  const int d = model_.dimension();
+  const std::size_t ns = nodes_.sph_nodes.size();
   if (mean_velocity_.field_count() > 0)  // (v^n + v^{n+1})/2
     for (int a = 0; a < d; ++a) {
       double* mean = mean_velocity_.field(a);
@@ -436,7 +443,8 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
       for (std::size_t i = 0; i < ns; ++i)
         mean[i] = 0.5 * (mean[i] + end[i]);
     }
-  if (mean_update) advance_stress_with_mean_velocity(state, dt);
+  if (operators_.stress_update == StressUpdate::MeanVelocity)
+    advance_stress_with_mean_velocity(state, dt);
   if (hourglass_stiffness_.active())
     advance_hourglass_force(hourglass_stiffness_, mean_velocity_, {0, 1}, dt, hourglass_factor_,
                             state.hourglass_force, state.hourglass_force);
@@ -459,8 +467,9 @@ void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
     for (int c = 0; c < d; ++c)
       std::copy_n(mean_node_gradient_.field(a * d + c), ns,
                   node_gradient_.field(model_.velocity_field(a) * d + c));
+  const int pore = model_.pore_pressure_field();  // p^{n+1} is the projection's
   for (int f = 0; f < nf; ++f)
-    if (model_.feeds_momentum_only(f))
+    if (model_.feeds_momentum_only(f) && f != pore)
       std::copy_n(start_fields_.field(f), ns, state.fields.field(f));
   std::copy(start_internal_.data().begin(), start_internal_.data().end(),
             state.internal.data().begin());

@@ -6,7 +6,7 @@
 // With the mean-velocity stress update (the 2D default, docs/theory.md eq. 2.5) step 2 advances
 // the velocity only; every other field is then advanced from Phi^n with the lumped average of the
 // stress points' gradients of (v^n + v^{n+1})/2, the velocity of the displacement, and the cells'
-// hourglass forces (eq. 3.9) with the same velocity.
+// hourglass forces (eq. 3.9) with the same velocity; in V3 after the pressure projection.
 // At nodes whose cells are incomplete the momentum balance is the adjoint of the stress points'
 // velocity gradient, and the level-n part of the strain rate is the lumped average of theirs
 // (docs/theory.md §5.3).
@@ -113,7 +113,7 @@ class RkTaylorStep {
   void project_free_faces(const FieldArray& start, FieldArray& values, bool boundary_rows) const;
   void close_incomplete_nodes(const State& state);
   void advance_stress_with_mean_velocity(State& state, double dt);
-  void advance_hourglass_forces(State& state, double dt);
+  void finish_with_mean_velocity(State& state, double dt);
   enum class FilterPart { All, Velocity, OtherFields };
   void filter_hourglass(FieldArray& fields, FilterPart part);
 
