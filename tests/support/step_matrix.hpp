@@ -27,9 +27,8 @@ Eigen::MatrixXd step_matrix_over(Simulation& simulation, Eigen::Index size, Slot
   State& state = simulation.state();
   Eigen::MatrixXd matrix(size, size);
   for (Eigen::Index column = 0; column < size; ++column) {
-    for (FieldArray* part :
-         {&state.fields, &state.displacement, &state.strain, &state.hourglass_force})
-      std::fill(part->data().begin(), part->data().end(), 0.0);
+    for (FieldArray* part : state.arrays())  // the internal variables stay as they are
+      if (part != &state.internal) std::fill(part->data().begin(), part->data().end(), 0.0);
     slot(column) = unit(column);
     state.time = 0.0;
     simulation.step().advance(state, dt > 0.0 ? dt : simulation.time_step());

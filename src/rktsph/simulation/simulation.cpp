@@ -446,11 +446,8 @@ RunStatus Simulation::run() {
 void Simulation::save_checkpoint(CheckpointOut& out) const {
   out.put_f64(state_.time);
   out.put_i64(state_.step);
-  out.put_fields(state_.fields);
-  out.put_fields(state_.internal);
-  out.put_fields(state_.displacement);
-  out.put_fields(state_.strain);
-  out.put_fields(state_.hourglass_force);
+  for (const FieldArray* array : state_.arrays())
+    out.put_fields(*array);
   if (projection_) projection_->save_checkpoint(out);
 }
 
@@ -459,11 +456,8 @@ void Simulation::restore_checkpoint(CheckpointIn& in) {
   state_.step = in.get_i64();
   if (state_.step < 0 || state_.step > total_steps_)
     in.fail(fmt::format("step {} outside this run's 0 to {}", state_.step, total_steps_));
-  in.get_fields_into(state_.fields);
-  in.get_fields_into(state_.internal);
-  in.get_fields_into(state_.displacement);
-  in.get_fields_into(state_.strain);
-  in.get_fields_into(state_.hourglass_force);
+  for (FieldArray* array : state_.arrays())
+    in.get_fields_into(*array);
   if (projection_) projection_->restore_checkpoint(in);
   resumed_ = true;
 }

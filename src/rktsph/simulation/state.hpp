@@ -1,6 +1,9 @@
-// The persistent state of a run: everything lives on the SPH nodes (docs/theory.md §2.2, Q2);
-// stress points hold no state between steps.
+// The persistent state of a run: the fields on the SPH nodes (docs/theory.md §2.2, Q2), and in 2D
+// the generalised hourglass force of each stress-point cell (eq. 3.9), the only state a stress
+// point carries between steps.
 #pragma once
+
+#include <array>
 
 #include "rktsph/core/field_array.hpp"
 
@@ -19,6 +22,14 @@ struct State {
   /// The generalised hourglass force k q of every stress-point cell (x, y), advanced with the
   /// velocity (docs/theory.md eq. 3.9); empty when the hourglass stiffness is off.
   FieldArray hourglass_force;
+
+  /// Every array of the state, in checkpoint order (empty ones included).
+  std::array<FieldArray*, 5> arrays() {
+    return {&fields, &internal, &displacement, &strain, &hourglass_force};
+  }
+  std::array<const FieldArray*, 5> arrays() const {
+    return {&fields, &internal, &displacement, &strain, &hourglass_force};
+  }
 };
 
 }  // namespace rktsph
