@@ -1,4 +1,4 @@
-// The checkpoint file (src/rktsph/simulation/checkpoint.hpp): values come back bit for bit, a
+// The checkpoint file (src/rktsph/core/checkpoint.hpp): values come back bit for bit, a
 // damaged file is refused rather than read, and a simulation restored from a checkpoint takes
 // the same next steps as the one that wrote it (also the saturated model, whose pressure solve
 // starts from the previous steps' p_w).
@@ -12,7 +12,7 @@
 
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/core/error.hpp"
-#include "rktsph/simulation/checkpoint.hpp"
+#include "rktsph/core/checkpoint.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
 namespace rktsph {

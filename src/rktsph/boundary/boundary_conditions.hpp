@@ -13,7 +13,7 @@
 #include "rktsph/case/case_description.hpp"
 #include "rktsph/core/field_array.hpp"
 #include "rktsph/geometry/node_sets.hpp"
-#include "rktsph/models/physics_model.hpp"
+#include "rktsph/physics/physics_model.hpp"
 #include "rktsph/sph/operators.hpp"
 
 namespace rktsph {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "rktsph/boundary/time_function.hpp"
+#include "rktsph/core/time_function.hpp"
 #include "rktsph/core/error.hpp"
 #include "rktsph/sph/kernel_type.hpp"
 

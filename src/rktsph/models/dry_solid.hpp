@@ -11,7 +11,7 @@
 
 #include "rktsph/case/case_description.hpp"
 #include "rktsph/materials/material.hpp"
-#include "rktsph/models/physics_model.hpp"
+#include "rktsph/physics/physics_model.hpp"
 
 namespace rktsph {
 

@@ -24,7 +24,7 @@
 #include "rktsph/case/case_description.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/models/saturated_vpw.hpp"
-#include "rktsph/simulation/checkpoint.hpp"
+#include "rktsph/core/checkpoint.hpp"
 #include "rktsph/sph/laplacian.hpp"
 #include "rktsph/time/rk_taylor_step.hpp"
 

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "rktsph/simulation/checkpoint.hpp"
+#include "rktsph/core/checkpoint.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
 namespace rktsph {

@@ -13,8 +13,8 @@
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/models/dry_solid.hpp"
 #include "rktsph/models/pressure_projection.hpp"
-#include "rktsph/simulation/checkpoint.hpp"
-#include "rktsph/simulation/state.hpp"
+#include "rktsph/core/checkpoint.hpp"
+#include "rktsph/physics/state.hpp"
 #include "rktsph/time/rk_taylor_step.hpp"
 
 namespace rktsph {

@@ -4,7 +4,7 @@
 #include <numeric>
 
 #include "rktsph/core/parallel.hpp"
-#include "rktsph/models/physics_model.hpp"
+#include "rktsph/physics/physics_model.hpp"
 
 namespace rktsph {
 

@@ -19,8 +19,8 @@
 
 #include "rktsph/boundary/boundary_conditions.hpp"
 #include "rktsph/geometry/node_sets.hpp"
-#include "rktsph/models/physics_model.hpp"
-#include "rktsph/simulation/state.hpp"
+#include "rktsph/physics/physics_model.hpp"
+#include "rktsph/physics/state.hpp"
 #include "rktsph/sph/adjoint_operator.hpp"
 #include "rktsph/sph/operators.hpp"
 #include "rktsph/stabilisation/hourglass_stiffness.hpp"

@@ -1,4 +1,4 @@
-#include "rktsph/simulation/checkpoint.hpp"
+#include "rktsph/core/checkpoint.hpp"
 
 #include <fmt/format.h>
 

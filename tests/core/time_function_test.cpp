@@ -1,7 +1,7 @@
 // TimeFunction::operator() against values worked out by hand from the definitions in
 // time_function.hpp. Tolerances: exact where the arithmetic is exact in binary floating point
 // (comparisons, values held constant), a few ulps of the result elsewhere.
-#include "rktsph/boundary/time_function.hpp"
+#include "rktsph/core/time_function.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "rktsph/boundary/time_function.hpp"
+#include "rktsph/core/time_function.hpp"
 
 #include <algorithm>
 #include <cmath>
