@@ -333,9 +333,15 @@ void DrySolid::advance(std::span<const std::int32_t> material, const FieldArray&
   }
 }
 
-void DrySolid::project_normal_stress_increment(std::int32_t material, std::uint8_t normal_axes,
+void DrySolid::project_traction_free_increment(std::int32_t material, const SurfaceNormals& normals,
                                                std::span<const double> start, FieldArray& values,
                                                std::size_t i) const {
+  // Lattice faces only, for now: the normals are coordinate axes.
+  std::uint8_t normal_axes = 0;
+  for (int r = 0; r < normals.count; ++r)
+    for (int a = 0; a < 3; ++a)
+      if (normals.normal[static_cast<std::size_t>(r)][static_cast<std::size_t>(a)] != 0.0)
+        normal_axes |= static_cast<std::uint8_t>(1u << a);
   // Normal strain corrections delta_eps_n (n in the constrained set N) solve
   //   sum_m D_nm delta_eps_m = -(sigma_nn - sigma_nn^start),  n, m in N,
   // and every carried normal stress then moves by sum_m D_km delta_eps_m (docs/theory.md §5.1).

@@ -70,7 +70,7 @@ class DrySolid : public PhysicsModel {
   void advance(std::span<const std::int32_t> material, const FieldArray& rate, double time,
                double interval, FieldArray& values, FieldArray& internal,
                AdvancedFields part = AdvancedFields::All) const override;
-  void project_normal_stress_increment(std::int32_t material, std::uint8_t normal_axes,
+  void project_traction_free_increment(std::int32_t material, const SurfaceNormals& normals,
                                        std::span<const double> start, FieldArray& values,
                                        std::size_t i) const override;
   void add_artificial_viscosity(std::span<const std::int32_t> material, const FieldArray& gradient,

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "rktsph/core/field_array.hpp"
+#include "rktsph/physics/surface_normals.hpp"
 #include "rktsph/sph/operators.hpp"
 
 namespace rktsph {
@@ -86,10 +87,11 @@ class PhysicsModel {
                        double interval, FieldArray& values, FieldArray& internal,
                        AdvancedFields part = AdvancedFields::All) const = 0;
 
-  /// Makes the stress increment of point i (now `values`, before `start`) traction-free along the
-  /// axes in `normal_axes` (bit a: a face with normal along a): the normal strain is whatever keeps
-  /// sigma_nn unchanged (prototype finding R2, docs/theory.md §5.1).
-  virtual void project_normal_stress_increment(std::int32_t material, std::uint8_t normal_axes,
+  /// Makes the stress increment of point i (now `values`, before `start`) traction-free on the
+  /// surfaces of unit normals `normals` (docs/theory.md §5.1): a normal strain along each normal
+  /// is added so that every sigma_nn keeps its start value, and every carried stress component
+  /// moves by the elastic stiffness times that strain.
+  virtual void project_traction_free_increment(std::int32_t material, const SurfaceNormals& normals,
                                                std::span<const double> start, FieldArray& values,
                                                std::size_t i) const = 0;
 

@@ -525,8 +525,12 @@ void RkTaylorStep::project_free_faces(const FieldArray& start, FieldArray& value
     const std::int32_t node = operators_.boundary_nodes[row];
     for (int f = 0; f < nf; ++f)
       start_values[f] = start(f, row);
-    model_.project_normal_stress_increment(
-        nodes_.node_material[static_cast<std::size_t>(node)], conditions_.projected_axes(node),
+    SurfaceNormals normals;
+    const std::uint8_t axes = conditions_.projected_axes(node);
+    for (int a = 0; a < model_.dimension(); ++a)
+      if (axes & (1u << a)) normals.add_axis(a);
+    model_.project_traction_free_increment(
+        nodes_.node_material[static_cast<std::size_t>(node)], normals,
         std::span<const double>(start_values, static_cast<std::size_t>(nf)), values,
         boundary_rows ? row : static_cast<std::size_t>(node));
   }
