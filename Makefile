@@ -13,13 +13,15 @@ DEB_PACKAGES := build-essential cmake libeigen3-dev libyaml-cpp-dev libcli11-dev
 DEB_REPORT_PACKAGES := python3-matplotlib chromium
 # Extra packages for the sanitizer build with the libFuzzer targets (`make fuzz`, .ci/run): clang,
 # its sanitizer and libFuzzer runtimes, and its OpenMP.
+# The format check of CI (`make format-check`).
+DEB_FORMAT_PACKAGES := clang-format
 DEB_FUZZ_PACKAGES := clang-14 libclang-rt-14-dev libfuzzer-14-dev libomp-14-dev
 FUZZ_BUILD_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: deps deps-report deps-fuzz configure build run test bench validate fuzz format clean
+.PHONY: deps deps-report deps-format deps-fuzz format-check configure build run test bench validate fuzz format clean
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
@@ -30,6 +32,11 @@ deps:
 
 deps-report: deps
 	@missing=""; for p in $(DEB_REPORT_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; fi
+
+deps-format:
+	@missing=""; for p in $(DEB_FORMAT_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
 	if [ -n "$$missing" ]; then \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; fi
 
@@ -73,6 +80,10 @@ fuzz: deps-fuzz
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
+
+# Fails, naming the files, if any tracked source differs from what .clang-format makes of it.
+format-check:
+	clang-format --dry-run --Werror $$(git ls-files '*.cpp' '*.hpp')
 
 clean:
 	rm -rf $(BUILD_DIR)

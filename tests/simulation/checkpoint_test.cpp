@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "rktsph/case/case_reader.hpp"
-#include "rktsph/core/error.hpp"
 #include "rktsph/core/checkpoint.hpp"
+#include "rktsph/core/error.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
 namespace rktsph {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "rktsph/core/time_function.hpp"
 #include "rktsph/core/error.hpp"
+#include "rktsph/core/time_function.hpp"
 #include "rktsph/sph/kernel_type.hpp"
 
 namespace rktsph {

@@ -22,9 +22,9 @@
 
 #include "rktsph/boundary/boundary_conditions.hpp"
 #include "rktsph/case/case_description.hpp"
+#include "rktsph/core/checkpoint.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/models/saturated_vpw.hpp"
-#include "rktsph/core/checkpoint.hpp"
 #include "rktsph/sph/laplacian.hpp"
 #include "rktsph/time/rk_taylor_step.hpp"
 
