@@ -93,5 +93,39 @@ BENCHMARK_CAPTURE(BM_BarWaveStep, xl, std::string("xl"))
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+/// One rebuild of every operator table of the step on the unchanged configuration, and what the
+/// step derives from them (docs/theory.md §2.6): the cost a large-deformation step pays each step.
+void BM_StepOperatorRebuild(benchmark::State& bench_state, const std::string& size) {
+  Simulation* simulation = nullptr;
+  try {
+    simulation = &simulation_for(size);
+  } catch (const std::exception& error) {
+    bench_state.SkipWithError(error.what());
+    return;
+  }
+  RkTaylorStep& step = simulation->step();
+  const Configuration& configuration = simulation->state().configuration;
+  for (auto _ : bench_state) {
+    step.rebuild_operators(configuration);
+    benchmark::ClobberMemory();
+  }
+  const auto nodes = static_cast<std::int64_t>(simulation->nodes().sph_nodes.size());
+  bench_state.SetItemsProcessed(bench_state.iterations() * nodes);  // nodes rebuilt
+  bench_state.counters["nodes"] = static_cast<double>(nodes);
+}
+
+BENCHMARK_CAPTURE(BM_StepOperatorRebuild, s, std::string("s"))
+    ->Iterations(10)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_StepOperatorRebuild, m, std::string("m"))
+    ->Iterations(5)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_StepOperatorRebuild, l, std::string("l"))
+    ->Iterations(3)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 }  // namespace
 }  // namespace rktsph

@@ -114,7 +114,7 @@ if [[ ${RKTSPH_BENCH_KERNELS:-1} != 0 ]]; then
     fi
   done
   json=$out_dir/table-build.json
-  if run_bench 1 "$out_dir/table-build.log" --benchmark_filter='^BM_BuildOperatorTables/' \
+  if run_bench 1 "$out_dir/table-build.log" --benchmark_filter='^BM_(BuildOperatorTables|StepOperatorRebuild)/' \
     --benchmark_out="$json" --benchmark_out_format=json; then
     kernel_files+=("$json")
   else

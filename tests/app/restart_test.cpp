@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "../support/shell.hpp"
+#include "rktsph/core/checkpoint.hpp"
 
 namespace {
 
@@ -252,7 +253,8 @@ TEST_F(RestartRefusal, OtherFormatVersionIsRefused) {
   write_bytes(checkpoint(), bytes);
   expect_refused(restart(),
                  "checkpoint format version 99, but this build of rktsph reads only "
-                 "version 2");
+                 "version " +
+                     std::to_string(rktsph::kCheckpointFormatVersion));
 }
 
 TEST_F(RestartRefusal, TruncatedCheckpointIsRefused) {

@@ -160,7 +160,7 @@ TEST(AdjointOperator, UniformStressUnderItsTractionIsAFixedPointOfTheStep) {
   // traction through the node's own half-step value (docs/theory.md eq. 5.2).
   Simulation simulation(read_case_text(loaded_block(), "block.yaml"));
   State& state = simulation.state();
-  const DrySolid& model = simulation.model();
+  const PhysicsModel& model = simulation.model();
   const double k0 = 0.3 / 0.7;
   for (std::size_t i = 0; i < simulation.nodes().sph_nodes.size(); ++i) {
     state.fields(model.stress_field(1, 1), i) = -5000.0;

@@ -172,7 +172,7 @@ TEST(RkTaylorStepSlow, WiderStencilsFilterEveryFieldAndStayStable) {
     block.numerics = fmt::format("{{h_over_dx: {}, courant: 0.5}}", h);
     Simulation simulation(block.description());
     EXPECT_FALSE(simulation.step().operators().compact_stencils) << h;
-    EXPECT_EQ(simulation.step().operators().hourglass_fields, HourglassFields::All) << h;
+    EXPECT_EQ(simulation.step().hourglass_fields(), HourglassFields::All) << h;
     EXPECT_LE(spectral_radius(simulation), 1.0 + 1e-9) << "h/dx " << h;
   }
 }
@@ -180,7 +180,7 @@ TEST(RkTaylorStepSlow, WiderStencilsFilterEveryFieldAndStayStable) {
 TEST(RkTaylorStep, VelocityOnlyFilterIsTheDefaultOnCompactStencilsAndRejectedOnWideOnes) {
   Simulation compact(stability_block(0.5, true).description());
   EXPECT_TRUE(compact.step().operators().compact_stencils);
-  EXPECT_EQ(compact.step().operators().hourglass_fields, HourglassFields::Velocity);
+  EXPECT_EQ(compact.step().hourglass_fields(), HourglassFields::Velocity);
   test::ElasticBlock block = stability_block(0.5, true);
   block.numerics = "{h_over_dx: 1.3, courant: 0.5, hourglass: {fields: velocity}}";
   try {

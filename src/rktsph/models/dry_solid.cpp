@@ -113,13 +113,6 @@ double DrySolid::divergence_bound(int field) const {
   return 10.0 * modulus;
 }
 
-SymmetricTensor DrySolid::stress_tensor(const FieldArray& values, std::size_t i) const {
-  SymmetricTensor sigma{};
-  for (int c = 0; c < stress_count_; ++c)
-    sigma[stress_slot_[c]] = values(dimension() + c, i);
-  return sigma;
-}
-
 void DrySolid::flux_rate(std::span<const std::int32_t> material, const FieldArray& gradient,
                          FieldArray& rate) const {
   const auto n = static_cast<std::int64_t>(material.size());

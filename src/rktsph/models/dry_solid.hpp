@@ -55,7 +55,7 @@ class DrySolid : public PhysicsModel {
   int stress_field(int i, int j) const override;
   double max_wave_speed() const override;
   /// c_p of one material: sqrt(modulus / density) with the modulus of the kinematics.
-  double wave_speed(std::int32_t material) const;
+  double wave_speed(std::int32_t material) const override;
   bool elastic(std::int32_t material) const override {
     return materials_[static_cast<std::size_t>(material)]->is_elastic();
   }
@@ -80,12 +80,9 @@ class DrySolid : public PhysicsModel {
                const FieldArray& internal, std::span<std::uint8_t> flowing) const override;
 
   Kinematics kinematics() const { return kinematics_; }
-  const Material& material(std::int32_t index) const { return *materials_[index]; }
-  std::size_t material_count() const { return materials_.size(); }
+  const Material& material(std::int32_t index) const override { return *materials_[index]; }
+  std::size_t material_count() const override { return materials_.size(); }
   const Loads& loads() const { return loads_; }
-
-  /// The carried stress components of point i as a 3D tensor (zeros where not carried).
-  SymmetricTensor stress_tensor(const FieldArray& values, std::size_t i) const;
 
  private:
   void advance_velocity(double rate_v[3], double time, double interval, double v[3]) const;

@@ -52,8 +52,8 @@ class PressureProjection final : public StepProjection {
   const SolverStatistics& statistics() const { return statistics_; }
   /// The values a restarted run needs to solve as this one would: the previous pressure of the
   /// warm start (which changes the iterates, so the last bits of the result) and the statistics.
-  void save_checkpoint(CheckpointOut& out) const;
-  void restore_checkpoint(CheckpointIn& in);
+  void save_checkpoint(CheckpointOut& out) const override;
+  void restore_checkpoint(CheckpointIn& in) override;
   const LaplacianMatrix& laplacian() const { return laplacian_; }
   /// The assembled system matrix (Dirichlet rows decoupled), for tests.
   const Eigen::SparseMatrix<double>& system() const { return system_; }

@@ -94,7 +94,7 @@ FieldSeriesWriter::FieldSeriesWriter(const Simulation& simulation, std::filesyst
 
 void FieldSeriesWriter::write(const Simulation& simulation) {
   const State& state = simulation.state();
-  const DrySolid& model = simulation.model();
+  const PhysicsModel& model = simulation.model();
   const std::size_t n = simulation.nodes().sph_nodes.size();
   const int d = model.dimension();
   const std::vector<double> zeros(n, 0.0);
@@ -153,7 +153,7 @@ void FieldSeriesWriter::write(const Simulation& simulation) {
     }
   }
   const std::string file = fmt::format("fields/fields_{:06d}.vtu", collection_.entries().size());
-  write_vtu(directory_ / file, simulation.nodes().sph_nodes, fields);
+  write_vtu(directory_ / file, state.configuration.sph_nodes, fields);  // current positions
   collection_.add(state.time, file);
   last_written_time_ = state.time;
 }

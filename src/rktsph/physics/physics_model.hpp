@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "rktsph/core/field_array.hpp"
+#include "rktsph/materials/material.hpp"
 #include "rktsph/physics/surface_normals.hpp"
 #include "rktsph/sph/operators.hpp"
 
@@ -59,6 +60,12 @@ class PhysicsModel {
 
   /// Largest wave speed of the model [m/s] (the drained P-wave speed), for the Courant rule.
   virtual double max_wave_speed() const = 0;
+
+  /// Number of materials, and material m (in the order of the case's material names).
+  virtual std::size_t material_count() const = 0;
+  virtual const Material& material(std::int32_t material) const = 0;
+  /// P-wave speed of material m [m/s] (drained), with the modulus of the model's kinematics.
+  virtual double wave_speed(std::int32_t material) const = 0;
 
   /// True if material m is elastic (never flows).
   virtual bool elastic(std::int32_t material) const = 0;
@@ -107,6 +114,17 @@ class PhysicsModel {
                        const FieldArray& internal, std::span<std::uint8_t> flowing) const {
     (void)material, (void)values, (void)internal;
     std::fill(flowing.begin(), flowing.end(), std::uint8_t{0});
+  }
+
+  /// The carried stress components of point i of `values` as a 3D tensor (zeros where not
+  /// carried; the effective stress in the saturated model).
+  SymmetricTensor stress_tensor(const FieldArray& values, std::size_t i) const {
+    // Slots of SymmetricTensor: xx, yy, zz, xy, yz, zx.
+    constexpr int kRow[6] = {0, 1, 2, 0, 1, 2}, kColumn[6] = {0, 1, 2, 1, 2, 0};
+    SymmetricTensor sigma{};
+    for (std::size_t slot = 0; slot < 6; ++slot)
+      if (const int f = stress_field(kRow[slot], kColumn[slot]); f >= 0) sigma[slot] = values(f, i);
+    return sigma;
   }
 
   /// Initial internal variables of point i.

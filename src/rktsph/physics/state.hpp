@@ -1,11 +1,13 @@
-// The persistent state of a run: the fields on the SPH nodes (docs/theory.md §2.2, Q2), and in 2D
-// the generalised hourglass force of each stress-point cell (eq. 3.9), the only state a stress
-// point carries between steps.
+// The persistent state of a run: the configuration (where the points are), the fields on the SPH
+// nodes (docs/theory.md §2.2), and in 2D the generalised hourglass force of each stress-point cell
+// (eq. 3.9), the only field state a stress point carries between steps.
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "rktsph/core/field_array.hpp"
+#include "rktsph/physics/configuration.hpp"
 
 namespace rktsph {
 
@@ -22,8 +24,10 @@ struct State {
   /// The generalised hourglass force k q of every stress-point cell (x, y), advanced with the
   /// velocity (docs/theory.md eq. 3.9); empty when the hourglass stiffness is off.
   FieldArray hourglass_force;
+  Configuration configuration;
 
-  /// Every array of the state, in checkpoint order (empty ones included).
+  /// Every field array of the state, in checkpoint order (empty ones included); the configuration
+  /// is written after them.
   std::array<FieldArray*, 5> arrays() {
     return {&fields, &internal, &displacement, &strain, &hourglass_force};
   }

@@ -1,5 +1,6 @@
 #include "rktsph/simulation/quantities.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rktsph {
@@ -23,7 +24,7 @@ double deviatoric_stress(const SymmetricTensor& s) {
 }  // namespace
 
 NodeQuantity find_quantity(const Simulation& simulation, const std::string& name) {
-  const DrySolid& model = simulation.model();
+  const PhysicsModel& model = simulation.model();
   const auto& fields = model.field_names();
   for (std::size_t f = 0; f < fields.size(); ++f)
     if (fields[f] == name) {
@@ -62,7 +63,7 @@ NodeQuantity find_quantity(const Simulation& simulation, const std::string& name
 }
 
 std::vector<std::string> quantity_names(const Simulation& simulation) {
-  const DrySolid& model = simulation.model();
+  const PhysicsModel& model = simulation.model();
   std::vector<std::string> names = model.field_names();
   for (int a = 0; a < model.dimension(); ++a)
     names.push_back(std::string("displacement_") + axis_letter(a));
@@ -74,6 +75,22 @@ std::vector<std::string> quantity_names(const Simulation& simulation) {
     for (const char* c : {"xx", "yy", "zz", "xy"})
       names.push_back(std::string("total_stress_") + c);
   return names;
+}
+
+double largest_speed(const Simulation& simulation) {
+  const PhysicsModel& model = simulation.model();
+  const FieldArray& fields = simulation.state().fields;
+  const std::size_t count = simulation.nodes().sph_nodes.size();
+  double largest = 0.0;
+  for (std::size_t k = 0; k < count; ++k) {
+    double square = 0.0;
+    for (int a = 0; a < model.dimension(); ++a) {
+      const double v = fields(model.velocity_field(a), k);
+      square += v * v;
+    }
+    largest = std::max(largest, square);
+  }
+  return std::sqrt(largest);
 }
 
 }  // namespace rktsph

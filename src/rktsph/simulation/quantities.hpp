@@ -15,6 +15,8 @@ using NodeQuantity = std::function<double(const State& state, std::size_t node)>
 
 /// The quantity named `name`, or an empty function if the model has no such quantity.
 NodeQuantity find_quantity(const Simulation& simulation, const std::string& name);
+/// The largest speed |v| over the SPH nodes [m/s].
+double largest_speed(const Simulation& simulation);
 /// Every name find_quantity accepts for this simulation.
 std::vector<std::string> quantity_names(const Simulation& simulation);
 

@@ -6,9 +6,6 @@
 #include <chrono>
 #include <cmath>
 
-#include "rktsph/materials/material_factory.hpp"
-#include "rktsph/models/saturated_vpw.hpp"
-
 namespace rktsph {
 
 const char* run_status_name(RunStatus status) {
@@ -25,347 +22,40 @@ const char* run_status_name(RunStatus status) {
   return "unknown";
 }
 
-namespace {
-
-Kinematics kinematics_of(const CaseDescription& description) {
-  if (description.dimension == 1) return Kinematics::Bar1D;
-  return description.plane == PlaneKind::Strain ? Kinematics::PlaneStrain : Kinematics::PlaneStress;
-}
-
-Loads loads_of(const CaseDescription& description) {
-  Loads loads;
-  if (description.gravity) {
-    loads.gravity = description.gravity->acceleration;
-    loads.gravity_factor = description.gravity->factor;
-  }
-  if (description.damping) {
-    loads.damping = description.damping->coefficient;
-    loads.damping_start = description.damping->start;
-    loads.damping_end = description.damping->end;
-  }
-  return loads;
-}
-
-// epsilon_s of docs/theory.md eq. 3.5, checked against its stability limit (1 - C^2)/C^2 at the
-// run's Courant number C (eq. 3.7; test
-// ZeroEnergyControlsSlow.StrainStiffnessIsStableBelowItsLimitAndRejectedAbove).
-double strain_hourglass_stiffness(const NumericsSpec& numerics, double courant) {
-  const double limit = std::max((1.0 - courant * courant) / (courant * courant), 0.0);
-  const double epsilon = numerics.strain_hourglass_stiffness;
-  if (epsilon > limit)
-    throw InputError(
-        numerics.where, "numerics.hourglass.strain_stiffness", fmt::format("{}", epsilon),
-        fmt::format("at Courant number {:.3g} the strain hourglass stiffness makes the "
-                    "step unstable above (1 - C^2)/C^2 = {:.3g} (docs/theory.md eq. "
-                    "3.7)",
-                    courant, limit),
-        fmt::format("a number in [0, {:.3g}], or a smaller courant", limit));
-  return epsilon;
-}
-
-// epsilon of docs/theory.md eq. 3.3, by default on in 2D with the mean-velocity stress update (1
-// in elastic cells, 0.1 in viscoplastic ones). With the half-step update the nodal stress and the
-// hourglass forces keep two memories of the motion, and a loaded body creeps while they drift
-// apart (theory §3.4), so that pair is refused.
-HourglassStrength hourglass_stiffness(const NumericsSpec& numerics, StressUpdate update,
-                                      int dimension) {
-  if (dimension < 2) return {};
-  if (!numerics.hourglass_stiffness)
-    return update == StressUpdate::MeanVelocity
-               ? HourglassStrength{kDefaultHourglassStiffness,
-                                   kDefaultViscoplasticHourglassStiffness}
-               : HourglassStrength{};
-  const double epsilon = *numerics.hourglass_stiffness;
-  if (epsilon > 0.0 && update != StressUpdate::MeanVelocity)
-    throw InputError(numerics.where, "numerics.hourglass.stiffness", fmt::format("{}", epsilon),
-                     "the hourglass stiffness needs the mean-velocity stress update: with "
-                     "stress_update: half_step the nodal stress and the hourglass forces drift "
-                     "apart and a loaded body creeps (docs/theory.md §3.4)",
-                     "0 with numerics.stress_update: half_step, or stress_update: mean_velocity");
-  return {epsilon, epsilon};
-}
-
-// The size of the lattice, estimated from the shapes in double before anything is allocated, so
-// that a wrong spacing or coordinate is refused at once instead of exhausting memory.
-NodeEstimate checked_node_estimate(const CaseDescription& description,
-                                   const SimulationLimits& limits) {
-  const GeometrySpec& geometry = description.geometry;
-  const NodeEstimate estimate = estimate_node_sets(geometry, description.dimension);
-  const double memory = estimated_run_memory(estimate.sph_nodes, estimate.lattice_points,
-                                             description.numerics.h_over_dx);
-  // The node lookup spans the bounding box: far-apart shapes cost memory without nodes.
-  const double lattice_limit = 16.0 * limits.max_nodes;
-  if (estimate.sph_nodes <= limits.max_nodes && estimate.lattice_points <= lattice_limit)
-    return estimate;
-  const ShapeSpec& largest = geometry.shapes[estimate.largest_shape];
-  const std::string problem =
-      estimate.sph_nodes > limits.max_nodes
-          ? fmt::format(
-                "the shapes ask for about {:.3g} SPH nodes at this spacing (the shape at "
-                "{} alone {:.3g}), about {:.3g} GB of memory, above the limit of {:.3g} "
-                "nodes",
-                estimate.sph_nodes, largest.where.to_string(), estimate.largest_shape_nodes,
-                memory * 1e-9, limits.max_nodes)
-          : fmt::format(
-                "the shapes' bounding box spans about {:.3g} lattice points at this "
-                "spacing, above the limit of {:.3g} (16 x --max-nodes)",
-                estimate.lattice_points, lattice_limit);
-  throw InputError(geometry.where, "geometry.spacing", fmt::format("{}", geometry.spacing), problem,
-                   "a coarser spacing or smaller shapes; to run it anyway, raise the limit with "
-                   "--max-nodes N (run and check)");
-}
-
-const Parameter* find_parameter(const ParameterBlock& block, const std::string& key) {
-  const auto it = block.values.find(key);
-  return it == block.values.end() ? nullptr : &it->second;
-}
-
-// c_p of every material finite and positive: the time step is C dx / c_p (a density of 1e-308
-// made it 0).
-void check_wave_speeds(const CaseDescription& description, const DrySolid& model,
-                       const std::vector<std::string>& material_names) {
-  for (std::size_t k = 0; k < material_names.size(); ++k) {
-    const double speed = model.wave_speed(static_cast<std::int32_t>(k));
-    if (std::isfinite(speed) && speed > 0.0) continue;
-    const ParameterBlock& block = description.materials.at(material_names[k]);
-    const Material& material = model.material(static_cast<std::int32_t>(k));
-    const double young = material.elastic().young_modulus, density = material.density();
-    // Blame the value farther (in decades) from a soil's (E ~ 1e8 Pa, rho ~ 2000 kg/m3).
-    const bool density_at_fault =
-        std::abs(std::log10(density / 2000.0)) > std::abs(std::log10(young / 1e8));
-    const std::string key = density_at_fault ? "density" : "young_modulus";
-    const Parameter* parameter = find_parameter(block, key);
-    throw InputError(parameter ? parameter->where : block.where, block.path + "." + key,
-                     fmt::format("{}", density_at_fault ? density : young),
-                     fmt::format("the P-wave speed of material '{}' (young_modulus {}, density "
-                                 "{}) is {}, so no time step can be derived from it",
-                                 material_names[k], young, density, speed),
-                     "young_modulus and density whose ratio gives a finite, non-zero wave speed");
-  }
-}
-
-// The number of steps to time.end, computed in double and checked against time.max_steps before
-// it is converted (1e14 s at dt = 1e-5 s overflowed a long to a negative count that passed).
-long checked_step_count(const CaseDescription& description, double dt,
-                        const std::string& dt_origin) {
-  const TimeSpec& time = description.time;
-  const double steps = std::ceil(time.end / dt - 1e-9);
-  if (std::isfinite(dt) && dt > 0.0 && steps <= static_cast<double>(time.max_steps))
-    return static_cast<long>(steps);
-  throw InputError(time.where, "time.max_steps", fmt::format("{}", time.max_steps),
-                   fmt::format("time.end = {:.6g} s needs {:.4g} steps of dt = {:.4g} s, where {}",
-                               time.end, steps, dt, dt_origin),
-                   fmt::format("at most max_steps steps: a shorter time.end, a larger dt, or "
-                               "max_steps >= {:.4g}",
-                               steps));
-}
-
-// The run's Courant number C = dt c_p / dx against the stable limit; the error names courant or,
-// when dt is given, time_step with the Courant number it implies.
-void check_courant(const CaseDescription& description, double courant, double wave_speed, double dx,
-                   bool compact_stencils) {
-  const NumericsSpec& numerics = description.numerics;
-  const double limit = stable_courant_limit(numerics.artificial_viscosity, compact_stencils);
-  if (courant <= limit * (1.0 + 1e-9)) return;
-  std::string reason = "the two-step Lax-Wendroff limit";
-  if (numerics.artificial_viscosity > 0.0)
-    reason = fmt::format("with artificial_viscosity {}, sqrt(1 + a^2) - a",
-                         numerics.artificial_viscosity);
-  if (!compact_stencils && limit == 0.75)
-    reason = fmt::format("with h_over_dx = {} (stencils wider than a cell)", numerics.h_over_dx);
-  const std::string problem = fmt::format(
-      "{}the step is unstable above Courant number {:.4g} ({}, measured: docs/theory.md §2.5)",
-      numerics.time_step ? fmt::format("this time step is Courant number C = dt c_p / dx = {:.4g} "
-                                       "(c_p = {:.4g} m/s, dx = {} m); ",
-                                       courant, wave_speed, dx)
-                         : "",
-      limit, reason);
-  if (numerics.time_step)
-    throw InputError(numerics.where, "numerics.time_step", fmt::format("{}", *numerics.time_step),
-                     problem,
-                     fmt::format("a time step of at most {:.4g} s", limit * dx / wave_speed));
-  throw InputError(numerics.where, "numerics.courant", fmt::format("{}", numerics.courant), problem,
-                   fmt::format("a number in (0, {:.4g}]", limit));
-}
-
-}  // namespace
-
-std::string Simulation::time_step_origin(const std::vector<std::string>& material_names) const {
-  const NumericsSpec& numerics = description_.numerics;
-  if (numerics.time_step) return fmt::format("dt is numerics.time_step = {}", *numerics.time_step);
-  std::size_t stiffest = 0;
-  for (std::size_t k = 1; k < material_names.size(); ++k)
-    if (model_->wave_speed(static_cast<std::int32_t>(k)) >
-        model_->wave_speed(static_cast<std::int32_t>(stiffest)))
-      stiffest = k;
-  const Material& material = model_->material(static_cast<std::int32_t>(stiffest));
-  return fmt::format(
-      "dt = numerics.courant {} x geometry.spacing {} m / c_p {:.4g} m/s of material '{}' "
-      "(young_modulus {}, density {})",
-      numerics.courant, nodes_.spacing, model_->max_wave_speed(), material_names[stiffest],
-      material.elastic().young_modulus, material.density());
-}
-
-double stable_courant_limit(double viscosity, bool compact_stencils) {
-  const double lax_wendroff = std::sqrt(1.0 + viscosity * viscosity) - viscosity;
-  return compact_stencils ? lax_wendroff : std::min(lax_wendroff, 0.75);
-}
-
-double estimated_run_memory(double sph_nodes, double lattice_points, double h_over_dx) {
-  const double bytes_per_node = 3.5e3 + 6.0e3 * std::max(h_over_dx - 0.75, 0.0);
-  return sph_nodes * bytes_per_node + 4.0 * lattice_points;
-}
-
-double Simulation::estimated_memory() const {
-  double lattice_points = 1.0;
-  for (int a = 0; a < nodes_.dimension; ++a)
-    lattice_points *= nodes_.lattice_size[a];
-  return estimated_run_memory(static_cast<double>(nodes_.sph_nodes.size()), lattice_points,
-                              description_.numerics.h_over_dx);
-}
-
 Simulation::Simulation(CaseDescription description, SimulationLimits limits)
-    : description_(std::move(description)) {
-  node_estimate_ = checked_node_estimate(description_, limits);
-  std::vector<std::unique_ptr<Material>> materials;
-  std::vector<std::string> material_names;
-  for (const auto& [name, block] : description_.materials) {
-    materials.push_back(create_material(block));
-    material_names.push_back(name);
-  }
-  nodes_ = build_node_sets(description_.geometry, description_.dimension, material_names);
-  groups_ = select_groups(nodes_, description_.groups);
-
-  const NumericsSpec& numerics = description_.numerics;
-  const SourceIntegration integration{numerics.rk_substep_factor, numerics.rk_max_substeps,
-                                      numerics.frozen_flux_source};
-  if (description_.model == ModelKind::SaturatedVpw) {
-    const PoreFluidSpec& fluid = *description_.pore_fluid;
-    // 1/Q = n/K_w (incompressible grains), k_bar = k/(rho_w g) (docs/theory.md §6.1).
-    const PoreFluid pore{fluid.biot_coefficient, fluid.porosity / fluid.bulk_modulus,
-                         fluid.hydraulic_conductivity / (fluid.density * fluid.gravity),
-                         fluid.density};
-    model_ = std::make_unique<SaturatedVpw>(kinematics_of(description_), std::move(materials),
-                                            loads_of(description_), integration, pore);
-  } else {
-    model_ = std::make_unique<DrySolid>(kinematics_of(description_), std::move(materials),
-                                        loads_of(description_), integration);
-  }
-  check_wave_speeds(description_, *model_, material_names);
-  conditions_ = std::make_unique<BoundaryConditions>(description_, nodes_, groups_, *model_);
-  // dt = C dx / c_p (docs/theory.md §2.5), constant but for a shorter last step: the operators
-  // are fixed. Both checked before the operators are built.
-  time_step_ = numerics.time_step ? *numerics.time_step
-                                  : numerics.courant * nodes_.spacing / model_->max_wave_speed();
-  total_steps_ = checked_step_count(description_, time_step_, time_step_origin(material_names));
-
-  StepOptions options;
-  options.kernel = numerics.kernel;
-  options.h_over_dx = numerics.h_over_dx;
-  options.interpolation_order = numerics.interpolation_order;
-  options.hourglass_filter = numerics.hourglass_filter;
-  options.hourglass_kappa = numerics.hourglass_kappa;
-  options.hourglass_h_over_dx = numerics.hourglass_h_over_dx;
-  options.hourglass_fields = numerics.hourglass_fields;
-  options.stress_update = numerics.stress_update.value_or(
-      nodes_.dimension >= 2 ? StressUpdate::MeanVelocity : StressUpdate::HalfStep);
-  options.hourglass_stiffness =
-      hourglass_stiffness(numerics, options.stress_update, nodes_.dimension);
-  options.hourglass_plastic_fraction = numerics.hourglass_plastic_fraction;
-  options.strain_hourglass_stiffness =
-      strain_hourglass_stiffness(numerics, time_step_ * model_->max_wave_speed() / nodes_.spacing);
-  options.artificial_viscosity = numerics.artificial_viscosity;
-  StepOperators operators = build_step_operators(nodes_, options, conditions_->mirror_planes());
-  if (numerics.hourglass_fields == HourglassFields::Velocity && !operators.compact_stencils &&
-      numerics.hourglass_filter && nodes_.dimension >= 2)
-    throw InputError(numerics.where, "numerics.hourglass.fields", "velocity",
-                     fmt::format("with h_over_dx = {} a stress point's stencil reaches beyond its "
-                                 "cell's corners, and the velocity-only filter then leaves the "
-                                 "step unstable (docs/theory.md §3.3)",
-                                 numerics.h_over_dx),
-                     "all, or h_over_dx below 0.79 (cubic spline; 0.52 for the quintic spline "
-                     "and the Gaussian)");
-  check_courant(description_, time_step_ * model_->max_wave_speed() / nodes_.spacing,
-                model_->max_wave_speed(), nodes_.spacing,
-                // Measured in 2D; a 1D bar is exact at C = 1 whatever its stencils.
-                operators.compact_stencils || nodes_.dimension < 2);
-  step_ = std::make_unique<RkTaylorStep>(*model_, nodes_, std::move(operators), *conditions_);
-  if (description_.model == ModelKind::SaturatedVpw) {
-    projection_ = std::make_unique<PressureProjection>(
-        static_cast<const SaturatedVpw&>(*model_), nodes_,
-        step_operator_options(nodes_, options, conditions_->mirror_planes()), *conditions_,
-        *description_.pore_fluid, time_step_);
-    step_->set_projection(projection_.get());
-  }
-  initialise_state();
-}
-
-void Simulation::initialise_state() {
-  const std::size_t n = nodes_.sph_nodes.size();
-  const int d = description_.dimension;
-  state_.fields = FieldArray(model_->field_count(), n);
-  state_.internal = FieldArray(model_->internal_count(), n);
-  state_.displacement = FieldArray(d, n);
-  if (step_->strain_hourglass_stiffness().active()) state_.strain = FieldArray(3, n);
-  if (step_->hourglass_stiffness().active())
-    state_.hourglass_force = FieldArray(2, nodes_.stress_points.size());
-  for (std::size_t i = 0; i < n; ++i) {
-    for (int a = 0; a < d; ++a)
-      state_.fields(model_->velocity_field(a), i) = description_.initial.velocity[a];
-    model_->initial_internal(nodes_.node_material[i], state_.internal, i);
-  }
-  if (description_.initial.geostatic_surface) {
-    // sigma_v = rho g_y (surface - y) (g_y < 0 gives compression), sigma_h = K0 sigma_v.
-    const double surface = *description_.initial.geostatic_surface;
-    const double g_vertical =
-        description_.gravity ? description_.gravity->acceleration[d - 1] : 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const Material& material = model_->material(nodes_.node_material[i]);
-      const double nu = material.elastic().poisson_ratio;
-      const double k0 = description_.initial.k0.value_or(nu / (1.0 - nu));
-      const double depth = surface - nodes_.sph_nodes.position[d - 1][i];
-      const double vertical = material.density() * g_vertical * depth;
-      state_.fields(model_->stress_field(d - 1, d - 1), i) = vertical;
-      for (int a = 0; a < d - 1; ++a)
-        state_.fields(model_->stress_field(a, a), i) = k0 * vertical;
-      const int zz = model_->stress_field(2, 2);
-      if (zz >= 0) state_.fields(zz, i) = k0 * vertical;
-    }
-  }
-  conditions_->apply(0.0, state_.fields);
-  step_->set_initial_state(state_);
-}
+    : assembly_(std::move(description), limits) {}
 
 double Simulation::step_length(long index) const {
-  if (index + 1 < total_steps_) return time_step_;
+  if (index + 1 < total_steps()) return time_step();
   // The last step ends exactly at time.end: it is shorter than dt when time.end is not a multiple
   // of dt (a shorter step is only more stable; the pressure projection re-assembles for it).
   // end - t is exact here (Sterbenz: t >= end / 2 unless it is the only step), so t + (end - t)
   // is end to the bit.
-  return description_.time.end - state_.time;
+  return description().time.end - state().time;
 }
 
 std::string Simulation::find_divergence(const State& state) const {
-  const std::size_t n = nodes_.sph_nodes.size();
+  const std::size_t n = nodes().sph_nodes.size();
   auto where = [&](std::size_t i) {
-    std::string text = fmt::format("SPH node {} (x = {:.6g}", i, nodes_.sph_nodes.position[0][i]);
-    if (nodes_.dimension > 1) text += fmt::format(", y = {:.6g}", nodes_.sph_nodes.position[1][i]);
+    std::string text = fmt::format("SPH node {} (x = {:.6g}", i, nodes().sph_nodes.position[0][i]);
+    if (nodes().dimension > 1)
+      text += fmt::format(", y = {:.6g}", nodes().sph_nodes.position[1][i]);
     return text + " m)";
   };
   for (int f = 0; f < state.fields.field_count(); ++f) {
     const double* values = state.fields.field(f);
-    const double bound = model_->divergence_bound(f);
+    const double bound = model().divergence_bound(f);
     for (std::size_t i = 0; i < n; ++i)
       if (!(std::abs(values[i]) <= bound))  // also catches NaN
         return fmt::format("field '{}' = {:.4g} at {} (physical bound {:.3g})",
-                           model_->field_names()[static_cast<std::size_t>(f)], values[i], where(i),
+                           model().field_names()[static_cast<std::size_t>(f)], values[i], where(i),
                            bound);
   }
   for (int k = 0; k < state.internal.field_count(); ++k)
     for (std::size_t i = 0; i < n; ++i)
       if (!std::isfinite(state.internal(k, i)))
         return fmt::format("internal variable '{}' is not finite at {}",
-                           model_->internal_names()[static_cast<std::size_t>(k)], where(i));
+                           model().internal_names()[static_cast<std::size_t>(k)], where(i));
   return {};
 }
 
@@ -374,12 +64,18 @@ bool Simulation::notify_observers(const std::function<void(Observer&)>& notify) 
     try {
       notify(*observer);
     } catch (const std::exception& error) {  // e.g. a result file that cannot be written
-      message_ = fmt::format("failed at step {} (t = {:.6g} s): {}", state_.step, state_.time,
+      message_ = fmt::format("failed at step {} (t = {:.6g} s): {}", state().step, state().time,
                              error.what());
       return false;
     }
   }
   return true;
+}
+
+std::string Simulation::observer_stop_reason() const {
+  for (const Observer* observer : observers_)
+    if (std::string reason = observer->stop_reason(); !reason.empty()) return reason;
+  return {};
 }
 
 RunStatus Simulation::finish_observers(RunStatus status) {
@@ -389,8 +85,8 @@ RunStatus Simulation::finish_observers(RunStatus status) {
     } catch (const std::exception& error) {
       if (status == RunStatus::Completed || status == RunStatus::Interrupted) {
         status = RunStatus::Failed;
-        message_ = fmt::format("failed at the end (step {}, t = {:.6g} s): {}", state_.step,
-                               state_.time, error.what());
+        message_ = fmt::format("failed at the end (step {}, t = {:.6g} s): {}", state().step,
+                               state().time, error.what());
       } else {
         message_ += fmt::format("; then: {}", error.what());
       }
@@ -410,55 +106,65 @@ RunStatus Simulation::run() {
   };
   if (!notify_observers(begin)) status = RunStatus::Failed;
   // Every step is checked; on divergence the observers keep the last good output on disk.
-  for (long s = state_.step; s < total_steps_ && status == RunStatus::Completed; ++s) {
+  for (long s = state().step; s < total_steps() && status == RunStatus::Completed; ++s) {
     // Between steps, so an interrupted run ends on a whole step its observers can record.
     if (const std::string reason = stop_check_ ? stop_check_() : std::string(); !reason.empty()) {
-      message_ = fmt::format("interrupted at step {} (t = {:.6g} s): {}", state_.step, state_.time,
-                             reason);
+      message_ = fmt::format("interrupted at step {} (t = {:.6g} s): {}", state().step,
+                             state().time, reason);
       status = RunStatus::Interrupted;
       break;
     }
     const double dt = step_length(s);
     if (!(dt > 0.0)) break;  // the round-off of t += dt already reached time.end
     try {
-      step_->advance(state_, dt);
+      step().advance(state(), dt);
     } catch (const std::exception& error) {  // e.g. a pressure solve that does not converge
-      message_ = fmt::format("failed at step {} (t = {:.6g} s): {}", state_.step + 1,
-                             state_.time + dt, error.what());
+      message_ = fmt::format("failed at step {} (t = {:.6g} s): {}", state().step + 1,
+                             state().time + dt, error.what());
       status = RunStatus::Failed;
       break;
     }
-    const std::string problem = find_divergence(state_);
+    const std::string problem = find_divergence(state());
     if (!problem.empty()) {
-      message_ =
-          fmt::format("diverged at step {} (t = {:.6g} s): {}", state_.step, state_.time, problem);
+      message_ = fmt::format("diverged at step {} (t = {:.6g} s): {}", state().step, state().time,
+                             problem);
       status = RunStatus::Diverged;
       break;
     }
     wall_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!notify_observers([this](Observer& observer) { observer.after_step(*this); }))
+    if (!notify_observers([this](Observer& observer) { observer.after_step(*this); })) {
       status = RunStatus::Failed;
+      break;
+    }
+    if (const std::string reason = observer_stop_reason(); !reason.empty()) {
+      message_ =
+          fmt::format("stopped at step {} (t = {:.6g} s): {}", state().step, state().time, reason);
+      stopped_early_ = true;
+      break;
+    }
   }
   wall_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return finish_observers(status);
 }
 
 void Simulation::save_checkpoint(CheckpointOut& out) const {
-  out.put_f64(state_.time);
-  out.put_i64(state_.step);
-  for (const FieldArray* array : state_.arrays())
+  out.put_f64(state().time);
+  out.put_i64(state().step);
+  for (const FieldArray* array : state().arrays())
     out.put_fields(*array);
-  if (projection_) projection_->save_checkpoint(out);
+  save_configuration(out, state().configuration);
+  if (assembly_.projection()) assembly_.projection()->save_checkpoint(out);
 }
 
 void Simulation::restore_checkpoint(CheckpointIn& in) {
-  state_.time = in.get_f64();
-  state_.step = in.get_i64();
-  if (state_.step < 0 || state_.step > total_steps_)
-    in.fail(fmt::format("step {} outside this run's 0 to {}", state_.step, total_steps_));
-  for (FieldArray* array : state_.arrays())
+  state().time = in.get_f64();
+  state().step = in.get_i64();
+  if (state().step < 0 || state().step > total_steps())
+    in.fail(fmt::format("step {} outside this run's 0 to {}", state().step, total_steps()));
+  for (FieldArray* array : state().arrays())
     in.get_fields_into(*array);
-  if (projection_) projection_->restore_checkpoint(in);
+  restore_configuration(in, state().configuration);
+  if (assembly_.projection()) assembly_.projection()->restore_checkpoint(in);
   resumed_ = true;
 }
 

@@ -1,5 +1,5 @@
-// A run: the case turned into nodes, materials, a physics model, boundary conditions, the step
-// operators and the state; and the time loop, which observers watch (docs/theory.md §2.3).
+// A run: the assembly of its case (assembly.hpp) and the time loop, which observers watch and may
+// end (docs/theory.md §2.6).
 #pragma once
 
 #include <functional>
@@ -8,14 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "rktsph/boundary/boundary_conditions.hpp"
-#include "rktsph/case/case_description.hpp"
 #include "rktsph/core/checkpoint.hpp"
-#include "rktsph/geometry/node_sets.hpp"
-#include "rktsph/models/dry_solid.hpp"
 #include "rktsph/models/pressure_projection.hpp"
-#include "rktsph/physics/state.hpp"
-#include "rktsph/time/rk_taylor_step.hpp"
+#include "rktsph/simulation/assembly.hpp"
 
 namespace rktsph {
 
@@ -40,6 +35,9 @@ class Observer {
   /// write files have restored their own state from it by then).
   virtual void on_resume(const Simulation& simulation) { (void)simulation; }
   virtual void after_step(const Simulation& simulation) { (void)simulation; }
+  /// Asked after every step, after after_step: a non-empty answer (the reason) ends the run there,
+  /// as completed (e.g. the body has come to rest). It must not throw.
+  virtual std::string stop_reason() const { return {}; }
   virtual void on_finish(const Simulation& simulation, RunStatus status,
                          const std::string& message) {
     (void)simulation;
@@ -48,30 +46,10 @@ class Observer {
   }
 };
 
-/// What a run may ask for; checked from the case before anything is built.
-struct SimulationLimits {
-  /// Largest estimated number of SPH nodes (the `--max-nodes` flag of run and check).
-  double max_nodes = 1e7;
-};
-
-/// Resident memory of a run [bytes] with this many SPH nodes, lattice points of the node lookup
-/// and smoothing length h/dx: measured peak RSS per node (/usr/bin/time -v, runs of 10k-160k nodes,
-/// docs/input-reference.md "Limits"): 3.1 KB dry and 3.5 KB saturated at h = 0.75 dx, 6.7 KB
-/// saturated at 1.3 dx; the larger figures, linear in h, plus 4 bytes per lattice point.
-double estimated_run_memory(double sph_nodes, double lattice_points, double h_over_dx);
-
-/// The largest Courant number at which the step is stable, measured as the spectral radius of the
-/// full step matrix (<= 1 + 1e-9) on a 12 x 5 block with every boundary type (docs/theory.md
-/// §2.5, tests CourantLimit*): on compact stencils the Lax-Wendroff limit 1 lowered by the
-/// artificial viscosity alpha to sqrt(1 + alpha^2) - alpha (measured 1.013, 0.791, 0.643, 0.433
-/// at alpha = 0, 0.25, 0.5, 1; the formula gives 1, 0.781, 0.618, 0.414); 2D stencils wider than
-/// a cell are stable only up to 0.766 at h = 1.3 dx without viscosity, so they are held to 0.75.
-double stable_courant_limit(double viscosity, bool compact_stencils);
-
 class Simulation final : public Checkpointed {
  public:
-  /// Builds everything; InputError for inconsistent input or a case above `limits`, RunError for
-  /// an unusable lattice.
+  /// Assembles the run (Assembly); InputError for inconsistent input or a case above `limits`,
+  /// RunError for an unusable lattice.
   explicit Simulation(CaseDescription description, SimulationLimits limits = {});
 
   void add_observer(Observer& observer) { observers_.push_back(&observer); }
@@ -80,43 +58,51 @@ class Simulation final : public Checkpointed {
   /// the run with status Diverged and a message naming the step, time, field, node and position;
   /// the observers are not shown that state, so the last output written is the last good one.
   /// An exception from an observer (an output that cannot be written) ends the run with status
-  /// Failed and its text; the stop check ends it with status Interrupted. Every way out calls
-  /// every observer's on_finish (one that throws there turns a completed or interrupted run into
-  /// a failed one), so the summary always records how the run ended.
+  /// Failed and its text; the stop check ends it with status Interrupted; an observer that asks
+  /// to stop (Observer::stop_reason) ends it early with status Completed and its reason in the
+  /// message. Every way out calls every observer's on_finish (one that throws there turns a
+  /// completed or interrupted run into a failed one), so the summary always records how the run
+  /// ended.
   RunStatus run();
   const std::string& message() const { return message_; }
 
-  const CaseDescription& description() const { return description_; }
-  const NodeSets& nodes() const { return nodes_; }
-  const std::map<std::string, std::vector<std::int32_t>>& groups() const { return groups_; }
-  const DrySolid& model() const { return *model_; }
-  const BoundaryConditions& boundary_conditions() const { return *conditions_; }
-  const RkTaylorStep& step() const { return *step_; }
-  const State& state() const { return state_; }
+  const Assembly& assembly() const { return assembly_; }
+  const CaseDescription& description() const { return assembly_.description(); }
+  /// The reference configuration (stable ids, materials, cells); the current one is
+  /// state().configuration.
+  const NodeSets& nodes() const { return assembly_.nodes(); }
+  const std::map<std::string, std::vector<std::int32_t>>& groups() const {
+    return assembly_.groups();
+  }
+  const PhysicsModel& model() const { return assembly_.model(); }
+  const BoundaryConditions& boundary_conditions() const { return assembly_.boundary_conditions(); }
+  const RkTaylorStep& step() const { return assembly_.step(); }
+  const State& state() const { return assembly_.state(); }
   /// Direct access for drivers that step by hand (tests, step-matrix analysis, restarts).
-  RkTaylorStep& step() { return *step_; }
-  State& state() { return state_; }
-  double time_step() const { return time_step_; }
+  RkTaylorStep& step() { return assembly_.step(); }
+  State& state() { return assembly_.state(); }
+  double time_step() const { return assembly_.time_step(); }
   /// The pressure projection of the saturated model, or null for a dry one.
-  const PressureProjection* pressure_projection() const { return projection_.get(); }
-  long total_steps() const { return total_steps_; }
+  const PressureProjection* pressure_projection() const {
+    return dynamic_cast<const PressureProjection*>(assembly_.projection());
+  }
+  long total_steps() const { return assembly_.total_steps(); }
   /// The size estimated from the shapes before the lattice was built.
-  const NodeEstimate& node_estimate() const { return node_estimate_; }
+  const NodeEstimate& node_estimate() const { return assembly_.node_estimate(); }
   /// estimated_run_memory() of the lattice that was built [bytes].
-  double estimated_memory() const;
+  double estimated_memory() const { return assembly_.estimated_memory(); }
   double wall_seconds() const { return wall_seconds_; }
+  /// True when an observer ended the run early (its reason is in message()).
+  bool stopped_early() const { return stopped_early_; }
 
-  /// The state and every other value the next step depends on (the pressure projection's
-  /// warm start); what the case determines (operators, the strain hourglass stiffness's
-  /// reference stresses of t = 0) is rebuilt from it instead.
+  /// The state and every other value the next step depends on (the projection's warm start);
+  /// what the case determines (operators, the strain hourglass stiffness's reference stresses of
+  /// t = 0) is rebuilt from it instead.
   void save_checkpoint(CheckpointOut& out) const override;
   /// Restores what save_checkpoint wrote; run() then continues from that step.
   void restore_checkpoint(CheckpointIn& in) override;
 
  private:
-  void initialise_state();
-  /// Where dt comes from, with the values, for messages.
-  std::string time_step_origin(const std::vector<std::string>& material_names) const;
   /// The step of the run's step `index` (0-based): dt, or what is left to time.end for the last.
   double step_length(long index) const;
   /// Describes the first value that is not finite or beyond the model's divergence bound (field,
@@ -124,25 +110,18 @@ class Simulation final : public Checkpointed {
   std::string find_divergence(const State& state) const;
   /// Calls `notify` for every observer; false (status Failed, message set) if one threw.
   bool notify_observers(const std::function<void(Observer&)>& notify);
+  /// The first observer's request to stop, or an empty string.
+  std::string observer_stop_reason() const;
   /// on_finish for every observer, even after one threw; returns the final status.
   RunStatus finish_observers(RunStatus status);
 
-  CaseDescription description_;
-  NodeSets nodes_;
-  std::map<std::string, std::vector<std::int32_t>> groups_;
-  std::unique_ptr<DrySolid> model_;
-  std::unique_ptr<BoundaryConditions> conditions_;
-  std::unique_ptr<RkTaylorStep> step_;
-  std::unique_ptr<PressureProjection> projection_;
-  State state_;
-  NodeEstimate node_estimate_;
-  double time_step_ = 0.0;
-  long total_steps_ = 0;
+  Assembly assembly_;
   double wall_seconds_ = 0.0;
   std::string message_;
   std::vector<Observer*> observers_;
   StopCheck stop_check_;
   bool resumed_ = false;
+  bool stopped_early_ = false;
 };
 
 }  // namespace rktsph

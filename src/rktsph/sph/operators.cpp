@@ -209,21 +209,25 @@ bool append_row(WeightTable& table, const Vector& target, std::span<const Stenci
   return regular;
 }
 
-namespace {
-
-WeightTable empty_table(int dimension) {
-  WeightTable table;
+void reset_table(WeightTable& table, int dimension) {
   table.dimension = dimension;
+  table.row_start.clear();
   table.row_start.push_back(0);
-  return table;
+  table.source.clear();
+  table.reflection.clear();
+  table.interpolation.clear();
+  for (auto& g : table.gradient)
+    g.clear();
+  table.has_reflections = false;
+  table.has_gradient = true;
+  table.weight_start.clear();
+  table.row_reflects.clear();
 }
 
-}  // namespace
-
-WeightTable build_cross_operator(const PointCloud& targets, const CellList& sources,
-                                 const OperatorOptions& options, StencilReport* report) {
-  WeightTable table = empty_table(targets.dimension);
-  std::vector<StencilSource> stencil;
+void build_cross_operator(const PointCloud& targets, const CellList& sources,
+                          const OperatorOptions& options, WeightTable& table,
+                          std::vector<StencilSource>& stencil, StencilReport* report) {
+  reset_table(table, targets.dimension);
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const Vector x = targets.point(i);
     gather_stencil(x, sources, options, -1, stencil);
@@ -231,14 +235,21 @@ WeightTable build_cross_operator(const PointCloud& targets, const CellList& sour
         append_row(table, x, stencil, options, GradientReference::ShepardCentroid, -1);
     if (!regular && report) report->degenerate_rows.push_back(static_cast<std::int32_t>(i));
   }
+}
+
+WeightTable build_cross_operator(const PointCloud& targets, const CellList& sources,
+                                 const OperatorOptions& options, StencilReport* report) {
+  WeightTable table;
+  std::vector<StencilSource> stencil;
+  build_cross_operator(targets, sources, options, table, stencil, report);
   return table;
 }
 
-WeightTable build_collocated_gradient(const PointCloud& points, const CellList& cells,
-                                      const OperatorOptions& options,
-                                      std::span<const std::int32_t> rows, StencilReport* report) {
-  WeightTable table = empty_table(points.dimension);
-  std::vector<StencilSource> stencil;
+void build_collocated_gradient(const PointCloud& points, const CellList& cells,
+                               const OperatorOptions& options, std::span<const std::int32_t> rows,
+                               WeightTable& table, std::vector<StencilSource>& stencil,
+                               StencilReport* report) {
+  reset_table(table, points.dimension);
   const std::size_t row_count = rows.empty() ? points.size() : rows.size();
   for (std::size_t r = 0; r < row_count; ++r) {
     const auto self = rows.empty() ? static_cast<std::int32_t>(r) : rows[r];
@@ -247,6 +258,14 @@ WeightTable build_collocated_gradient(const PointCloud& points, const CellList& 
     const bool regular = append_row(table, x, stencil, options, GradientReference::Self, self);
     if (!regular && report) report->degenerate_rows.push_back(static_cast<std::int32_t>(r));
   }
+}
+
+WeightTable build_collocated_gradient(const PointCloud& points, const CellList& cells,
+                                      const OperatorOptions& options,
+                                      std::span<const std::int32_t> rows, StencilReport* report) {
+  WeightTable table;
+  std::vector<StencilSource> stencil;
+  build_collocated_gradient(points, cells, options, rows, table, stencil, report);
   return table;
 }
 

@@ -128,6 +128,19 @@ WeightTable build_collocated_gradient(const PointCloud& points, const CellList& 
                                       std::span<const std::int32_t> rows = {},
                                       StencilReport* report = nullptr);
 
+/// Empties a table for a rebuild, keeping the capacity of its arrays (docs/theory.md §2.6).
+void reset_table(WeightTable& table, int dimension);
+
+/// The two builders above, into an existing table and stencil buffer (reset first): a rebuild on
+/// a configuration of the same size allocates nothing.
+void build_cross_operator(const PointCloud& targets, const CellList& sources,
+                          const OperatorOptions& options, WeightTable& table,
+                          std::vector<StencilSource>& stencil, StencilReport* report = nullptr);
+void build_collocated_gradient(const PointCloud& points, const CellList& cells,
+                               const OperatorOptions& options, std::span<const std::int32_t> rows,
+                               WeightTable& table, std::vector<StencilSource>& stencil,
+                               StencilReport* report = nullptr);
+
 /// Frees the gradient weights of a table used only for interpolation (the hourglass filter).
 void drop_gradients(WeightTable& table);
 

@@ -10,217 +10,29 @@
 
 namespace rktsph {
 
-namespace {
-
-// Removes the last row of a table (used to retry a degenerate boundary stencil).
-void drop_last_row(WeightTable& table) {
-  table.row_start.pop_back();
-  const auto size = static_cast<std::size_t>(table.row_start.back());
-  table.source.resize(size);
-  table.reflection.resize(size);
-  table.interpolation.resize(size);
-  for (auto& g : table.gradient)
-    g.resize(size);
-}
-
-std::string describe_point(const PointCloud& points, std::size_t i) {
-  if (points.dimension == 1) return fmt::format("x = {:.6g} m", points.position[0][i]);
-  return fmt::format("(x, y) = ({:.6g}, {:.6g}) m", points.position[0][i], points.position[1][i]);
-}
-
-// Number of the 2^d lattice cells around a node that carry a stress point (mirror images
-// included).
-int occupied_cells(std::span<const StencilSource> stencil, const std::array<double, 3>& x,
-                   int dimension, double spacing) {
-  const double nearest = 0.5 * std::sqrt(static_cast<double>(dimension)) * spacing * (1.0 + 1e-6);
-  int count = 0;
-  for (const StencilSource& s : stencil) {
-    double r2 = 0.0;
-    for (int a = 0; a < dimension; ++a)
-      r2 += std::pow(s.position[a] - x[a], 2);
-    if (r2 <= nearest * nearest) ++count;
-  }
-  return count;
-}
-
-// A node whose cells do not all carry a stress point is a boundary node and gets the half-step of
-// step 1b, except at a re-entrant corner (2D, three cells of four, e.g. the toe of a cut): there
-// the three stress points surround the node, so the cross-set gradient is already linear-exact,
-// while the self-including boundary closure is unstable (spectral radius 1.2-1.45 per step on an
-// L-shaped lattice at C = 0.3-0.9; the corner lies on no face, so nothing constrains its
-// half-step).
-bool is_incomplete(int occupied, int dimension) {
-  return occupied < (1 << dimension);
-}
-
-bool needs_boundary_half_step(int occupied, int dimension) {
-  const bool reentrant_corner = dimension == 2 && occupied == (1 << dimension) - 1;
-  return is_incomplete(occupied, dimension) && !reentrant_corner;
-}
-
-}  // namespace
-
-OperatorOptions step_operator_options(const NodeSets& nodes, const StepOptions& options,
-                                      const std::vector<MirrorPlane>& mirrors) {
-  OperatorOptions operator_options;
-  operator_options.kernel = Kernel(options.kernel, nodes.dimension);
-  operator_options.smoothing_length = options.h_over_dx * nodes.spacing;
-  operator_options.interpolation_order = options.interpolation_order;
-  operator_options.mirrors = mirrors;
-  return operator_options;
-}
-
-StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& options,
-                                   const std::vector<MirrorPlane>& mirrors) {
-  const int d = nodes.dimension;
-  const double dx = nodes.spacing;
-  const OperatorOptions operator_options = step_operator_options(nodes, options, mirrors);
-  const double support = operator_options.kernel.support_radius(operator_options.smoothing_length);
-  const CellList node_cells(nodes.sph_nodes, support);
-  const CellList point_cells(nodes.stress_points, support);
-
-  StepOperators ops;
-  StencilReport report;
-  ops.nodes_to_points =
-      build_cross_operator(nodes.stress_points, node_cells, operator_options, &report);
-  if (!report.degenerate_rows.empty())
-    throw RunError(fmt::format(
-        "the stress point at {} has a degenerate stencil (h/dx = {} is too small for its "
-        "neighbourhood)",
-        describe_point(nodes.stress_points, static_cast<std::size_t>(report.degenerate_rows[0])),
-        options.h_over_dx));
-
-  // Classify nodes, then build the step-2 table.
-  const std::size_t n = nodes.sph_nodes.size();
-  const auto n_points = static_cast<std::int32_t>(nodes.stress_points.size());
-  std::vector<std::vector<StencilSource>> stencils(n);
-  ops.node_to_boundary_row.assign(n, -1);
-  std::vector<std::int32_t> incomplete;  // nodes whose cells are not all present
-  for (std::size_t i = 0; i < n; ++i) {
-    gather_stencil(nodes.sph_nodes.point(i), point_cells, operator_options, -1, stencils[i]);
-    const int occupied = occupied_cells(stencils[i], nodes.sph_nodes.point(i), d, dx);
-    if (occupied == 0)
-      throw RunError(fmt::format(
-          "the SPH node at {} belongs to no lattice cell (a shape vertex or a one-node-wide strip "
-          "that touches no cell), so nothing moves it; widen the shape to whole cells",
-          describe_point(nodes.sph_nodes, i)));
-    if (is_incomplete(occupied, d)) incomplete.push_back(static_cast<std::int32_t>(i));
-    if (needs_boundary_half_step(occupied, d)) {
-      ops.node_to_boundary_row[i] = static_cast<std::int32_t>(ops.boundary_nodes.size());
-      ops.boundary_nodes.push_back(static_cast<std::int32_t>(i));
-    }
-  }
-  // Their closure: the lumped adjoint of the stress points' operator, with the node's own
-  // half-step value (which carries the face tractions) where it has one (docs/theory.md §5.3).
-  std::vector<std::int32_t> own_column(incomplete.size(), -1);
-  for (std::size_t r = 0; r < incomplete.size(); ++r)
-    if (ops.node_to_boundary_row[static_cast<std::size_t>(incomplete[r])] >= 0)
-      own_column[r] = n_points + incomplete[r];
-  ops.incomplete_closure = build_adjoint_operator(ops.nodes_to_points, nodes.stress_points.volume,
-                                                  incomplete, own_column);
-
-  WeightTable& table = ops.points_to_nodes;
-  table.dimension = d;
-  table.row_start.push_back(0);
-  std::vector<StencilSource> extra;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto x = nodes.sph_nodes.point(i);
-    const auto self = static_cast<std::int32_t>(i);
-    std::vector<StencilSource>& stencil = stencils[i];
-    bool regular;
-    if (ops.node_to_boundary_row[i] < 0) {
-      regular =
-          append_row(table, x, stencil, operator_options, GradientReference::ShepardCentroid, -1);
-    } else {
-      // Boundary node: own half-step value as reference (spec §2.2, step 2).
-      regular =
-          append_row(table, x, stencil, operator_options, GradientReference::Self, n_points + self);
-      if (!regular) {
-        // Rank-deficient compact stencil (e.g. a corner at h = 0.75 dx): add the half-step values
-        // of the neighbouring boundary nodes (prototype finding R4).
-        drop_last_row(table);
-        gather_stencil(x, node_cells, operator_options, self, extra);
-        for (StencilSource s : extra)
-          if (ops.node_to_boundary_row[static_cast<std::size_t>(s.column)] >= 0) {
-            s.column += n_points;
-            stencil.push_back(s);
-          }
-        regular = append_row(table, x, stencil, operator_options, GradientReference::Self,
-                             n_points + self);
-      }
-    }
-    if (!regular)
-      throw RunError(
-          fmt::format("the SPH node at {} has a degenerate stencil that even its "
-                      "boundary neighbours cannot complete",
-                      describe_point(nodes.sph_nodes, i)));
-  }
-
-  report.degenerate_rows.clear();
-  if (ops.boundary_nodes.empty()) {
-    ops.boundary_gradient.dimension = d;  // every face is a mirror plane: no half-step rows
-    ops.boundary_gradient.row_start = {0};
-  } else {
-    ops.boundary_gradient = build_collocated_gradient(nodes.sph_nodes, node_cells, operator_options,
-                                                      ops.boundary_nodes, &report);
-  }
-  if (!report.degenerate_rows.empty())
-    throw RunError(fmt::format(
-        "the boundary node at {} has a degenerate collocated stencil",
-        describe_point(nodes.sph_nodes,
-                       static_cast<std::size_t>(ops.boundary_nodes[report.degenerate_rows[0]]))));
-
-  // Hourglass filter: round trip through the stress points with first-order interpolation on a
-  // wider support, so that linear fields pass unchanged up to the boundary (prototype R6).
-  ops.hourglass_filter = options.hourglass_filter && d >= 2 && options.hourglass_kappa > 0.0;
-  ops.hourglass_kappa = options.hourglass_kappa;
-  ops.compact_stencils = true;
-  for (std::size_t p = 0; p < ops.nodes_to_points.rows(); ++p)
-    ops.compact_stencils =
-        ops.compact_stencils &&
-        ops.nodes_to_points.row_start[p + 1] - ops.nodes_to_points.row_start[p] <= (1 << d);
-  // With wider stencils the velocity-only filter leaves the step unstable (spectral radius
-  // 1.00003-1.001 at h = 1.0-1.3 dx); the filter on every field keeps it below 1 (§3.3).
-  ops.hourglass_fields = options.hourglass_fields.value_or(
-      ops.compact_stencils ? HourglassFields::Velocity : HourglassFields::All);
-  ops.stress_update = options.stress_update;
-  ops.hourglass_stiffness = options.hourglass_stiffness;
-  ops.hourglass_plastic_fraction = options.hourglass_plastic_fraction;
-  ops.strain_hourglass_stiffness = options.strain_hourglass_stiffness;
-  ops.viscosity_length = options.artificial_viscosity * dx;
-  if (ops.hourglass_filter) {
-    OperatorOptions filter_options = operator_options;
-    filter_options.smoothing_length = options.hourglass_h_over_dx * dx;
-    filter_options.interpolation_order = 1;
-    const double filter_support =
-        filter_options.kernel.support_radius(filter_options.smoothing_length);
-    const CellList filter_node_cells(nodes.sph_nodes, filter_support);
-    const CellList filter_point_cells(nodes.stress_points, filter_support);
-    ops.filter_to_points =
-        build_cross_operator(nodes.stress_points, filter_node_cells, filter_options);
-    ops.filter_to_nodes = build_cross_operator(nodes.sph_nodes, filter_point_cells, filter_options);
-    drop_gradients(ops.filter_to_points);  // the round trip only interpolates
-    drop_gradients(ops.filter_to_nodes);
-    share_row_weights(ops.filter_to_points);  // interior rows share one stencil: less memory
-    share_row_weights(ops.filter_to_nodes);   // traffic in the filter (docs/theory.md §3.3)
-  }
-  return ops;
-}
-
-RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
-                           StepOperators operators, const BoundaryConditions& conditions)
-    : model_(model), nodes_(nodes), operators_(std::move(operators)), conditions_(conditions) {
+RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
+                           const StepOptions& options, StepOperatorBuilder builder,
+                           OperatorPolicy policy, const BoundaryConditions& conditions,
+                           const Configuration& configuration)
+    : model_(model),
+      nodes_(reference),
+      options_(options),
+      builder_(std::move(builder)),
+      policy_(policy),
+      conditions_(conditions) {
   const int nf = model.field_count();
   const int nk = model.internal_count();
   const int d = model.dimension();
-  const std::size_t nv = nodes.stress_points.size();
-  const std::size_t ns = nodes.sph_nodes.size();
-  const std::size_t nb = operators_.boundary_nodes.size();
-  for (std::int32_t node : operators_.boundary_nodes) {
-    boundary_material_.push_back(nodes.node_material[static_cast<std::size_t>(node)]);
-    if (conditions.projected_axes(node))
-      projected_rows_.push_back(operators_.node_to_boundary_row[static_cast<std::size_t>(node)]);
-  }
+  const std::size_t nv = reference.stress_points.size();
+  const std::size_t ns = reference.sph_nodes.size();
+  builder_.build(configuration, operators_);
+  // With wider stencils the velocity-only filter leaves the step unstable (spectral radius
+  // 1.00003-1.001 at h = 1.0-1.3 dx); the filter on every field keeps it below 1 (§3.3). Fixed
+  // at the first build, so that a rebuild never switches the filtered fields.
+  hourglass_fields_ = options.hourglass_fields.value_or(
+      operators_.compact_stencils ? HourglassFields::Velocity : HourglassFields::All);
+  filter_active_ = builder_.filter_active();
+  viscosity_length_ = options.artificial_viscosity * reference.spacing;
   internal_parity_.assign(static_cast<std::size_t>(nk), kEven);
   for (int f = 0; f < nf; ++f)
     momentum_flux_.push_back(model.feeds_momentum_only(f) ? 1 : 0);
@@ -236,7 +48,7 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
   for (int a = 0; a < d; ++a)
     is_velocity[static_cast<std::size_t>(model.velocity_field(a))] = 1;
   for (int f = 0; f < nf; ++f) {
-    if (operators_.hourglass_fields == HourglassFields::All || !model.feeds_momentum_only(f)) {
+    if (hourglass_fields_ == HourglassFields::All || !model.feeds_momentum_only(f)) {
       const Parity parity = model.parities()[static_cast<std::size_t>(f)];
       filtered_fields_.push_back(f);
       filtered_parities_.push_back(parity);
@@ -253,22 +65,14 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
   point_rate_ = FieldArray(nf, nv);
   point_internal_ = FieldArray(nk, nv);
   point_velocity_ = FieldArray(d, nv);
-  boundary_values_ = FieldArray(nf, nb);
-  boundary_start_ = FieldArray(nf, nb);
-  boundary_gradient_ = FieldArray(nf * d, nb);
-  boundary_rate_ = FieldArray(nf, nb);
-  boundary_internal_ = FieldArray(nk, nb);
   node_gradient_ = FieldArray(nf * d, ns);
   node_rate_ = FieldArray(nf, ns);
-  hourglass_stiffness_ = build_hourglass_stiffness(nodes, model, operators_.hourglass_stiffness);
+  hourglass_stiffness_ = build_hourglass_stiffness(reference, model, options.hourglass_stiffness);
   if (hourglass_stiffness_.active()) {
     hourglass_force_ = FieldArray(2, nv);
     hourglass_factor_.assign(nv, 1.0);
     point_flowing_.assign(nv, 0);
   }
-  strain_hourglass_stiffness_ = StrainHourglassStiffness(
-      model, operators_.nodes_to_points, nodes.stress_points.volume, conditions.mirror_axes(),
-      conditions.constrained_stress(), nodes.node_material, operators_.strain_hourglass_stiffness);
   for (int a = 0; a < d; ++a)
     velocity_parities_.push_back(
         model.parities()[static_cast<std::size_t>(model.velocity_field(a))]);
@@ -277,46 +81,88 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes,
       velocity_gradient_parities_.push_back(
           static_cast<Parity>(velocity_parities_[static_cast<std::size_t>(a)] ^ (1u << c)));
   every_gradient_.assign(static_cast<std::size_t>(d * d), 1);
-  if (hourglass_stiffness_.active() || operators_.stress_update == StressUpdate::MeanVelocity)
+  if (hourglass_stiffness_.active() || options.stress_update == StressUpdate::MeanVelocity)
     mean_velocity_ = FieldArray(d, ns);
-  if (operators_.stress_update == StressUpdate::MeanVelocity) {
-    std::vector<std::int32_t> every_node(ns), no_own_value(ns, -1);
-    for (std::size_t i = 0; i < ns; ++i)
-      every_node[i] = static_cast<std::int32_t>(i);
-    node_average_ = build_adjoint_operator(operators_.nodes_to_points, nodes.stress_points.volume,
-                                           every_node, no_own_value);
+  if (options.stress_update == StressUpdate::MeanVelocity) {
     start_fields_ = FieldArray(nf, ns);
     start_internal_ = FieldArray(nk, ns);
     mean_point_gradient_ = FieldArray(d * d, nv);
     mean_node_gradient_ = FieldArray(d * d, ns);
   }
-  if (operators_.hourglass_filter) {
+  if (filter_active_) {
     const auto values = filtered_fields_.size();
     filter_values_.assign(values * ns, 0.0);
     filter_points_.assign(values * nv, 0.0);
     filter_round_trip_.assign(values * ns, 0.0);
     filter_residual_.assign(values * ns, 0.0);
-    if (model.pore_pressure_field() >= 0 && operators_.hourglass_fields == HourglassFields::All)
+    if (model.pore_pressure_field() >= 0 && hourglass_fields_ == HourglassFields::All)
       pore_buffer_.assign(ns, 0.0);
+  }
+  bind_operators(configuration);
+  // On the first tables: it keeps the imposed stresses of t = 0 as its reference (eq. 3.8).
+  strain_hourglass_stiffness_ = StrainHourglassStiffness(
+      model, operators_.nodes_to_points, configuration.stress_points.volume,
+      conditions.mirror_axes(), conditions.constrained_stress(), reference.node_material,
+      options.strain_hourglass_stiffness);
+}
+
+void RkTaylorStep::bind_operators(const Configuration& configuration) {
+  // What the step derives from the operators: the boundary rows' materials and projected faces,
+  // their scratch, the lumped average of the mean-velocity update.
+  const int nf = model_.field_count();
+  const int nk = model_.internal_count();
+  const int d = model_.dimension();
+  const std::size_t ns = configuration.sph_nodes.size();
+  const std::size_t nb = operators_.boundary_nodes.size();
+  boundary_material_.clear();
+  projected_rows_.clear();
+  for (std::int32_t node : operators_.boundary_nodes) {
+    boundary_material_.push_back(nodes_.node_material[static_cast<std::size_t>(node)]);
+    if (conditions_.projected_axes(node))
+      projected_rows_.push_back(operators_.node_to_boundary_row[static_cast<std::size_t>(node)]);
+  }
+  if (boundary_values_.point_count() != nb || boundary_values_.field_count() != nf) {
+    boundary_values_ = FieldArray(nf, nb);
+    boundary_start_ = FieldArray(nf, nb);
+    boundary_gradient_ = FieldArray(nf * d, nb);
+    boundary_rate_ = FieldArray(nf, nb);
+    boundary_internal_ = FieldArray(nk, nb);
+  }
+  if (options_.stress_update == StressUpdate::MeanVelocity) {
+    every_node_.resize(ns);
+    no_own_value_.assign(ns, -1);
+    for (std::size_t i = 0; i < ns; ++i)
+      every_node_[i] = static_cast<std::int32_t>(i);
+    node_average_ = build_adjoint_operator(
+        operators_.nodes_to_points, configuration.stress_points.volume, every_node_, no_own_value_);
   }
 }
 
+void RkTaylorStep::rebuild_operators(const Configuration& configuration) {
+  builder_.build(configuration, operators_);
+  bind_operators(configuration);
+}
+
 void RkTaylorStep::advance(State& state, double dt) {
+  if (policy_ == OperatorPolicy::CurrentConfiguration) rebuild_operators(state.configuration);
   step_stress_points(state, dt);
   step_boundary_nodes(state, dt);
   step_nodes(state, dt);
   if (projection_) projection_->project(state, state.time + dt, dt);
   finish_with_mean_velocity(state, dt);
-  // Displacement by the trapezoidal rule: the v^n half was added in step 2.
-  const std::size_t ns = nodes_.sph_nodes.size();
+  add_half_step_displacement(state, dt);  // the v^{n+1} half of the trapezoidal rule
+  state.time += dt;
+  ++state.step;
+}
+
+void RkTaylorStep::add_half_step_displacement(State& state, double dt) const {
+  const std::size_t ns = state.displacement.point_count();
   for (int a = 0; a < model_.dimension(); ++a) {
     const double* v = state.fields.field(model_.velocity_field(a));
     double* u = state.displacement.field(a);
     for (std::size_t i = 0; i < ns; ++i)
       u[i] += 0.5 * dt * v[i];
   }
-  state.time += dt;
-  ++state.step;
 }
 
 void RkTaylorStep::step_stress_points(const State& state, double dt) {
@@ -336,11 +182,11 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
   if (hourglass_stiffness_.active()) {
     model_.flowing(nodes_.stress_point_material, half_step_, point_internal_, point_flowing_);
     for (std::size_t p = 0; p < point_flowing_.size(); ++p)
-      hourglass_factor_[p] = point_flowing_[p] ? operators_.hourglass_plastic_fraction : 1.0;
+      hourglass_factor_[p] = point_flowing_[p] ? options_.hourglass_plastic_fraction : 1.0;
   }
-  if (operators_.viscosity_length > 0.0)
+  if (viscosity_length_ > 0.0)
     model_.add_artificial_viscosity(nodes_.stress_point_material, point_gradient_,
-                                    operators_.viscosity_length, half_step_);
+                                    viscosity_length_, half_step_);
 }
 
 void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
@@ -363,9 +209,9 @@ void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
   model_.advance(boundary_material_, boundary_rate_, state.time, 0.5 * dt, boundary_values_,
                  boundary_internal_);
   project_free_faces(boundary_start_, boundary_values_, true);
-  if (operators_.viscosity_length > 0.0)  // before the BCs: a free face stays traction-free
-    model_.add_artificial_viscosity(boundary_material_, boundary_gradient_,
-                                    operators_.viscosity_length, boundary_values_);
+  if (viscosity_length_ > 0.0)  // before the BCs: a free face stays traction-free
+    model_.add_artificial_viscosity(boundary_material_, boundary_gradient_, viscosity_length_,
+                                    boundary_values_);
   conditions_.apply(state.time + 0.5 * dt, boundary_values_, operators_.node_to_boundary_row);
   const std::size_t nv = nodes_.stress_points.size();
   for (std::size_t r = 0; r < boundary.size(); ++r)
@@ -376,15 +222,10 @@ void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
 void RkTaylorStep::step_nodes(State& state, double dt) {
   const int d = model_.dimension();
   const std::size_t ns = nodes_.sph_nodes.size();
-  const bool mean_update = operators_.stress_update == StressUpdate::MeanVelocity;
+  const bool mean_update = options_.stress_update == StressUpdate::MeanVelocity;
   // Displacement by the trapezoidal rule: half with v^n now, the v^{n+1} half in advance(). The
   // strain hourglass stiffness acts on this u^{n+1/2} (docs/theory.md §3.4).
-  for (int a = 0; a < d; ++a) {
-    const double* v = state.fields.field(model_.velocity_field(a));
-    double* u = state.displacement.field(a);
-    for (std::size_t i = 0; i < ns; ++i)
-      u[i] += 0.5 * dt * v[i];
-  }
+  add_half_step_displacement(state, dt);
   if (strain_hourglass_stiffness_.active())
     strain_hourglass_stiffness_.add_stress(
         model_, operators_.nodes_to_points, nodes_.stress_point_material, state.displacement,
@@ -423,7 +264,7 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
                  mean_update ? AdvancedFields::Velocity : AdvancedFields::All);
   project_free_faces(boundary_start_, state.fields, false);
   conditions_.apply(state.time + dt, state.fields);
-  if (operators_.hourglass_filter) {
+  if (filter_active_) {
     // After the conditions: a fixed node's pre-condition velocity carries its reaction, which the
     // round trip would otherwise spread to its neighbours; then again, as the filter moves them.
     // With the mean-velocity update the other fields are filtered after they are redone.
@@ -443,7 +284,7 @@ void RkTaylorStep::finish_with_mean_velocity(State& state, double dt) {
       for (std::size_t i = 0; i < ns; ++i)
         mean[i] = 0.5 * (mean[i] + end[i]);
     }
-  if (operators_.stress_update == StressUpdate::MeanVelocity)
+  if (options_.stress_update == StressUpdate::MeanVelocity)
     advance_stress_with_mean_velocity(state, dt);
   if (hourglass_stiffness_.active())
     advance_hourglass_force(hourglass_stiffness_, mean_velocity_, {0, 1}, dt, hourglass_factor_,
@@ -479,7 +320,7 @@ void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
                  AdvancedFields::Others);
   project_free_faces(boundary_start_, state.fields, false);
   conditions_.apply(state.time + dt, state.fields);
-  if (operators_.hourglass_filter && operators_.hourglass_fields == HourglassFields::All) {
+  if (filter_active_ && hourglass_fields_ == HourglassFields::All) {
     filter_hourglass(state.fields, FilterPart::OtherFields);
     conditions_.apply(state.time + dt, state.fields);
   }
@@ -537,15 +378,14 @@ void RkTaylorStep::project_free_faces(const FieldArray& start, FieldArray& value
 }
 
 void RkTaylorStep::filter_hourglass(FieldArray& fields, FilterPart part) {
-  if (!operators_.hourglass_filter) return;
+  if (!filter_active_) return;
   // Saturated model: sigma' and p_w both jump at a drained face while the total stress does not;
   // filtering them separately spreads that boundary layer and drains undrained soil. So the
   // filter acts on the total normal stress sigma'_aa - alpha p_w and leaves p_w untouched
   // (docs/theory.md §6.5).
-  const int pore =
-      operators_.hourglass_fields == HourglassFields::All && part != FilterPart::Velocity
-          ? model_.pore_pressure_field()
-          : -1;
+  const int pore = hourglass_fields_ == HourglassFields::All && part != FilterPart::Velocity
+                       ? model_.pore_pressure_field()
+                       : -1;
   const std::vector<int>& list = part == FilterPart::All        ? filtered_fields_
                                  : part == FilterPart::Velocity ? filtered_velocity_fields_
                                                                 : filtered_other_fields_;
@@ -594,7 +434,7 @@ void RkTaylorStep::filter_hourglass(FieldArray& fields, FilterPart part) {
   for (std::int64_t k = 0; k < count; ++k)
     residual[k] = values[k] - trip[k];
   round_trip(filter_residual_);
-  const double kappa = operators_.hourglass_kappa;
+  const double kappa = options_.hourglass_kappa;
 #pragma omp parallel for schedule(static) if (nodes > kParallelThreshold)
   for (std::int64_t i = 0; i < nodes; ++i)
     for (int f = 0; f < nf; ++f)

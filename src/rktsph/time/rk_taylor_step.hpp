@@ -10,7 +10,9 @@
 // At nodes whose cells are incomplete the momentum balance is the adjoint of the stress points'
 // velocity gradient, and the level-n part of the strain rate is the lumped average of theirs
 // (docs/theory.md §5.3).
-// The operators are weight tables built once (positions are fixed in V1 and V3).
+// The operators are weight tables from the one builder (time/step_operators.hpp), built once on the
+// reference configuration or before every step on the current one (the model's policy,
+// docs/theory.md §2.6).
 #pragma once
 
 #include <cstdint>
@@ -18,6 +20,7 @@
 #include <vector>
 
 #include "rktsph/boundary/boundary_conditions.hpp"
+#include "rktsph/core/checkpoint.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/physics/physics_model.hpp"
 #include "rktsph/physics/state.hpp"
@@ -25,56 +28,9 @@
 #include "rktsph/sph/operators.hpp"
 #include "rktsph/stabilisation/hourglass_stiffness.hpp"
 #include "rktsph/stabilisation/strain_hourglass_stiffness.hpp"
+#include "rktsph/time/step_operators.hpp"
 
 namespace rktsph {
-
-struct StepOptions {
-  KernelType kernel = KernelType::CubicSpline;
-  double h_over_dx = 0.75;
-  int interpolation_order = 0;
-  bool hourglass_filter = true;  // ignored in 1D, where midpoint stress points have no such mode
-  double hourglass_kappa = 0.1;
-  double hourglass_h_over_dx = 1.3;
-  std::optional<HourglassFields> hourglass_fields;  // unset: Velocity on compact stencils, else All
-  StressUpdate stress_update = StressUpdate::HalfStep;
-  HourglassStrength hourglass_stiffness;    // epsilon of docs/theory.md eq. 3.3; 0 = off
-  double hourglass_plastic_fraction = 0.0;  // psi of eq. 3.9, in flowing cells
-  double strain_hourglass_stiffness = 0.0;  // epsilon_s of docs/theory.md eq. 3.5; 0 = off
-  double artificial_viscosity = 0.0;        // alpha of prototype R7; 0 = off
-};
-
-/// The operator tables of the step and the classification of nodes they imply.
-struct StepOperators {
-  WeightTable nodes_to_points;    ///< step 1: S -> V interpolation and gradient
-  WeightTable points_to_nodes;    ///< step 2: columns [0, nV) stress points, [nV, nV+nS) nodes
-  WeightTable boundary_gradient;  ///< step 1b: rows = boundary_nodes, columns = SPH nodes
-  std::vector<std::int32_t> boundary_nodes;        ///< nodes with incomplete stencils (step 1b)
-  std::vector<std::int32_t> node_to_boundary_row;  ///< -1 for interior nodes
-  /// Step 2 closure of every node whose 2^d cells are not all present (the boundary nodes and the
-  /// re-entrant corners): the lumped adjoint of nodes_to_points (docs/theory.md eqs. 5.2, 5.3).
-  AdjointOperator incomplete_closure;
-  bool hourglass_filter = false;
-  double hourglass_kappa = 0.0;
-  HourglassFields hourglass_fields = HourglassFields::Velocity;
-  StressUpdate stress_update = StressUpdate::HalfStep;
-  HourglassStrength hourglass_stiffness;    ///< epsilon of the cells' hourglass stiffness (eq. 3.3)
-  double hourglass_plastic_fraction = 0.0;  ///< psi of eq. 3.9
-  double strain_hourglass_stiffness = 0.0;  ///< epsilon_s of eq. 3.5
-  /// Every stress point's stencil is its own cell's corners (h small enough): the lattice
-  /// operators then commute in the interior (docs/theory.md §5.3).
-  bool compact_stencils = false;
-  WeightTable filter_to_points;  ///< first-order round trip of the filter (prototype R6)
-  WeightTable filter_to_nodes;
-  double viscosity_length = 0.0;  ///< alpha * dx of the artificial viscosity (0 = off)
-};
-
-/// The kernel, smoothing length, interpolation order and mirrors of the step's operators.
-OperatorOptions step_operator_options(const NodeSets& nodes, const StepOptions& options,
-                                      const std::vector<MirrorPlane>& mirrors);
-
-/// Builds the tables; throws RunError naming the node if a stencil cannot be made regular.
-StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& options,
-                                   const std::vector<MirrorPlane>& mirrors);
 
 /// A correction applied after the RK-TSPH pass and its boundary conditions, before the step ends
 /// (the pressure projection of the saturated model, docs/theory.md §6.1). `time` is t^{n+1}.
@@ -82,17 +38,29 @@ class StepProjection {
  public:
   virtual ~StepProjection() = default;
   virtual void project(State& state, double time, double dt) = 0;
+  /// What the next step depends on beyond the state (a solver's warm start); nothing by default.
+  virtual void save_checkpoint(CheckpointOut& out) const { (void)out; }
+  virtual void restore_checkpoint(CheckpointIn& in) { (void)in; }
 };
 
 class RkTaylorStep {
  public:
-  RkTaylorStep(const PhysicsModel& model, const NodeSets& nodes, StepOperators operators,
-               const BoundaryConditions& conditions);
+  /// Builds the operators on `configuration` (the initial one) with `builder`; with the policy
+  /// CurrentConfiguration they are rebuilt on the state's configuration before every step.
+  RkTaylorStep(const PhysicsModel& model, const NodeSets& reference, const StepOptions& options,
+               StepOperatorBuilder builder, OperatorPolicy policy,
+               const BoundaryConditions& conditions, const Configuration& configuration);
 
-  /// Advances `state` by dt. Allocates nothing.
+  /// Advances `state` by dt. Allocates nothing with the policy ReferenceConfiguration.
   void advance(State& state, double dt);
 
   const StepOperators& operators() const { return operators_; }
+  const StepOptions& options() const { return options_; }
+  const OperatorOptions& operator_options() const { return builder_.operator_options(); }
+  /// The fields the hourglass filter acts on (resolved from the stencils when the case is silent).
+  HourglassFields hourglass_fields() const { return hourglass_fields_; }
+  /// Rebuilds the operators on `configuration` and what the step derives from them.
+  void rebuild_operators(const Configuration& configuration);
   const HourglassStiffness& hourglass_stiffness() const { return hourglass_stiffness_; }
   const StrainHourglassStiffness& strain_hourglass_stiffness() const {
     return strain_hourglass_stiffness_;
@@ -107,6 +75,9 @@ class RkTaylorStep {
   void filter_hourglass(FieldArray& fields) { filter_hourglass(fields, FilterPart::All); }
 
  private:
+  void bind_operators(const Configuration& configuration);
+  /// u += dt/2 v, one half of the trapezoidal displacement update.
+  void add_half_step_displacement(State& state, double dt) const;
   void step_stress_points(const State& state, double dt);
   void step_boundary_nodes(const State& state, double dt);
   void step_nodes(State& state, double dt);
@@ -118,8 +89,14 @@ class RkTaylorStep {
   void filter_hourglass(FieldArray& fields, FilterPart part);
 
   const PhysicsModel& model_;
-  const NodeSets& nodes_;
+  const NodeSets& nodes_;  // the reference configuration: materials, cells
+  StepOptions options_;
+  StepOperatorBuilder builder_;
+  OperatorPolicy policy_;
   StepOperators operators_;
+  HourglassFields hourglass_fields_ = HourglassFields::Velocity;
+  bool filter_active_ = false;
+  double viscosity_length_ = 0.0;  // alpha * dx of the artificial viscosity (0 = off)
   const BoundaryConditions& conditions_;
   StepProjection* projection_ = nullptr;
   HourglassStiffness hourglass_stiffness_;  // docs/theory.md §3.4
@@ -158,7 +135,8 @@ class RkTaylorStep {
   std::vector<double> pore_buffer_;  // p_w kept out of the filter (saturated model)
   // The mean-velocity stress update (eq. 2.5) and the hourglass forces (eq. 3.9).
   AdjointOperator node_average_;  // lumped average over every node
-  FieldArray start_fields_;       // Phi^n and kappa^n, to redo the stress update
+  std::vector<std::int32_t> every_node_, no_own_value_;
+  FieldArray start_fields_;  // Phi^n and kappa^n, to redo the stress update
   FieldArray start_internal_;
   FieldArray mean_velocity_;        // v^n, then (v^n + v^{n+1})/2
   FieldArray mean_point_gradient_;  // G of it at the stress points

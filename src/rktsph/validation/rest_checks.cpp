@@ -165,22 +165,6 @@ void SampledObserver::on_finish(const Simulation& simulation, RunStatus status,
   if (status == RunStatus::Completed && simulation.state().time != last_time_) take(simulation);
 }
 
-double largest_speed(const Simulation& simulation) {
-  const DrySolid& model = simulation.model();
-  const FieldArray& fields = simulation.state().fields;
-  const std::size_t count = simulation.nodes().sph_nodes.size();
-  double largest = 0.0;
-  for (std::size_t k = 0; k < count; ++k) {
-    double square = 0.0;
-    for (int a = 0; a < model.dimension(); ++a) {
-      const double v = fields(model.velocity_field(a), k);
-      square += v * v;
-    }
-    largest = std::max(largest, square);
-  }
-  return std::sqrt(largest);
-}
-
 SpeedRecorder::SpeedRecorder(double interval)
     : observer_(interval, [this](const Simulation& simulation) {
         history_.time.push_back(simulation.state().time);

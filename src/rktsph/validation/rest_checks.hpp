@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "rktsph/simulation/quantities.hpp"
 #include "rktsph/simulation/simulation.hpp"
 #include "rktsph/validation/validation_case.hpp"
 
@@ -114,9 +115,6 @@ class SampledObserver final : public Observer {
 struct SpeedHistory {
   std::vector<double> time, speed;
 };
-
-/// Largest |v| over all SPH nodes of the current state.
-double largest_speed(const Simulation& simulation);
 
 /// Records largest_speed at t = 0, every `interval` s (every step if <= 0: use the case's
 /// output.probe_interval) and at the end.

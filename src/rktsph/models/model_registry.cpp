@@ -1,0 +1,87 @@
+#include "rktsph/models/model_registry.hpp"
+
+#include <stdexcept>
+
+#include "rktsph/models/dry_solid.hpp"
+#include "rktsph/models/pressure_projection.hpp"
+#include "rktsph/models/saturated_vpw.hpp"
+
+namespace rktsph {
+
+namespace {
+
+Kinematics kinematics_of(const CaseDescription& description) {
+  if (description.dimension == 1) return Kinematics::Bar1D;
+  return description.plane == PlaneKind::Strain ? Kinematics::PlaneStrain : Kinematics::PlaneStress;
+}
+
+Loads loads_of(const CaseDescription& description) {
+  Loads loads;
+  if (description.gravity) {
+    loads.gravity = description.gravity->acceleration;
+    loads.gravity_factor = description.gravity->factor;
+  }
+  if (description.damping) {
+    loads.damping = description.damping->coefficient;
+    loads.damping_start = description.damping->start;
+    loads.damping_end = description.damping->end;
+  }
+  return loads;
+}
+
+SourceIntegration integration_of(const NumericsSpec& numerics) {
+  return {numerics.rk_substep_factor, numerics.rk_max_substeps, numerics.frozen_flux_source};
+}
+
+std::unique_ptr<PhysicsModel> create_dry_solid(const CaseDescription& description,
+                                               std::vector<std::unique_ptr<Material>> materials) {
+  return std::make_unique<DrySolid>(kinematics_of(description), std::move(materials),
+                                    loads_of(description), integration_of(description.numerics));
+}
+
+std::unique_ptr<PhysicsModel> create_saturated_vpw(
+    const CaseDescription& description, std::vector<std::unique_ptr<Material>> materials) {
+  const PoreFluidSpec& fluid = *description.pore_fluid;
+  // 1/Q = n/K_w (incompressible grains), k_bar = k/(rho_w g) (docs/theory.md §6.1).
+  const PoreFluid pore{fluid.biot_coefficient, fluid.porosity / fluid.bulk_modulus,
+                       fluid.hydraulic_conductivity / (fluid.density * fluid.gravity),
+                       fluid.density};
+  return std::make_unique<SaturatedVpw>(kinematics_of(description), std::move(materials),
+                                        loads_of(description), integration_of(description.numerics),
+                                        pore);
+}
+
+std::unique_ptr<StepProjection> create_pressure_projection(
+    const PhysicsModel& model, const NodeSets& nodes, const OperatorOptions& options,
+    const BoundaryConditions& conditions, const CaseDescription& description, double dt) {
+  return std::make_unique<PressureProjection>(static_cast<const SaturatedVpw&>(model), nodes,
+                                              options, conditions, *description.pore_fluid, dt);
+}
+
+}  // namespace
+
+const std::vector<RegisteredModel>& registered_models() {
+  static const std::vector<RegisteredModel> models = {
+      {"dry_solid",
+       ModelKind::DrySolid,
+       {1, 2},
+       OperatorPolicy::ReferenceConfiguration,
+       create_dry_solid,
+       nullptr},
+      {"saturated_vpw",
+       ModelKind::SaturatedVpw,
+       {1, 2},
+       OperatorPolicy::ReferenceConfiguration,
+       create_saturated_vpw,
+       create_pressure_projection},
+  };
+  return models;
+}
+
+const RegisteredModel& registered_model(ModelKind kind) {
+  for (const RegisteredModel& model : registered_models())
+    if (model.kind == kind) return model;
+  throw std::logic_error("registered_model: a ModelKind without an entry");
+}
+
+}  // namespace rktsph

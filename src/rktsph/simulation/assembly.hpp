@@ -1,0 +1,90 @@
+// A run assembled from its case (docs/theory.md §2.6): the reference configuration and groups, the
+// materials and the physics model from the model registry, the boundary conditions, the time step,
+// the step with its operators, the model's projection and the initial state. Everything is checked
+// before it is built. The time loop (simulation.hpp) runs what this assembles.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rktsph/boundary/boundary_conditions.hpp"
+#include "rktsph/case/case_description.hpp"
+#include "rktsph/geometry/node_sets.hpp"
+#include "rktsph/models/model_registry.hpp"
+#include "rktsph/models/pressure_projection.hpp"
+#include "rktsph/physics/physics_model.hpp"
+#include "rktsph/physics/state.hpp"
+#include "rktsph/time/rk_taylor_step.hpp"
+
+namespace rktsph {
+
+/// What a run may ask for; checked from the case before anything is built.
+struct SimulationLimits {
+  /// Largest estimated number of SPH nodes (the `--max-nodes` flag of run and check).
+  double max_nodes = 1e7;
+};
+
+/// Resident memory of a run [bytes] with this many SPH nodes, lattice points of the node lookup
+/// and smoothing length h/dx: measured peak RSS per node (/usr/bin/time -v, runs of 10k-160k nodes,
+/// docs/input-reference.md "Limits"): 3.1 KB dry and 3.5 KB saturated at h = 0.75 dx, 6.7 KB
+/// saturated at 1.3 dx; the larger figures, linear in h, plus 4 bytes per lattice point.
+double estimated_run_memory(double sph_nodes, double lattice_points, double h_over_dx);
+
+/// The largest Courant number at which the step is stable, measured as the spectral radius of the
+/// full step matrix (<= 1 + 1e-9) on a 12 x 5 block with every boundary type (docs/theory.md
+/// §2.5, tests CourantLimit*): on compact stencils the Lax-Wendroff limit 1 lowered by the
+/// artificial viscosity alpha to sqrt(1 + alpha^2) - alpha (measured 1.013, 0.791, 0.643, 0.433
+/// at alpha = 0, 0.25, 0.5, 1; the formula gives 1, 0.781, 0.618, 0.414); 2D stencils wider than
+/// a cell are stable only up to 0.766 at h = 1.3 dx without viscosity, so they are held to 0.75.
+double stable_courant_limit(double viscosity, bool compact_stencils);
+
+class Assembly {
+ public:
+  /// Builds everything; InputError for inconsistent input or a case above `limits`, RunError for
+  /// an unusable lattice.
+  explicit Assembly(CaseDescription description, SimulationLimits limits = {});
+  Assembly(const Assembly&) = delete;
+  Assembly& operator=(const Assembly&) = delete;
+
+  const CaseDescription& description() const { return description_; }
+  /// The reference configuration: stable ids, materials, cells.
+  const NodeSets& nodes() const { return nodes_; }
+  const std::map<std::string, std::vector<std::int32_t>>& groups() const { return groups_; }
+  const PhysicsModel& model() const { return *model_; }
+  const RegisteredModel& registered_model() const { return *registered_; }
+  const BoundaryConditions& boundary_conditions() const { return *conditions_; }
+  const RkTaylorStep& step() const { return *step_; }
+  RkTaylorStep& step() { return *step_; }
+  const State& state() const { return state_; }
+  State& state() { return state_; }
+  double time_step() const { return time_step_; }
+  /// The model's correction after the RK-TSPH pass (the pressure projection of V3), or null.
+  StepProjection* projection() const { return projection_.get(); }
+  long total_steps() const { return total_steps_; }
+  /// The size estimated from the shapes before the lattice was built.
+  const NodeEstimate& node_estimate() const { return node_estimate_; }
+  /// estimated_run_memory() of the lattice that was built [bytes].
+  double estimated_memory() const;
+
+ private:
+  void initialise_state();
+  /// Where dt comes from, with the values, for messages.
+  std::string time_step_origin(const std::vector<std::string>& material_names) const;
+
+  CaseDescription description_;
+  NodeSets nodes_;
+  std::map<std::string, std::vector<std::int32_t>> groups_;
+  const RegisteredModel* registered_ = nullptr;
+  std::unique_ptr<PhysicsModel> model_;
+  std::unique_ptr<BoundaryConditions> conditions_;
+  std::unique_ptr<RkTaylorStep> step_;
+  std::unique_ptr<StepProjection> projection_;
+  State state_;
+  NodeEstimate node_estimate_;
+  double time_step_ = 0.0;
+  long total_steps_ = 0;
+};
+
+}  // namespace rktsph

@@ -1,0 +1,209 @@
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <bit>
+
+#include "rktsph/core/error.hpp"
+#include "rktsph/time/step_operators.hpp"
+
+namespace rktsph {
+
+namespace {
+
+// Removes the last row of a table (used to retry a degenerate boundary stencil).
+void drop_last_row(WeightTable& table) {
+  table.row_start.pop_back();
+  const auto size = static_cast<std::size_t>(table.row_start.back());
+  table.source.resize(size);
+  table.reflection.resize(size);
+  table.interpolation.resize(size);
+  for (auto& g : table.gradient)
+    g.resize(size);
+}
+
+std::string describe_point(const PointCloud& points, std::size_t i) {
+  if (points.dimension == 1) return fmt::format("x = {:.6g} m", points.position[0][i]);
+  return fmt::format("(x, y) = ({:.6g}, {:.6g}) m", points.position[0][i], points.position[1][i]);
+}
+
+// A node whose cells do not all carry a stress point is a boundary node and gets the half-step of
+// step 1b, except at a re-entrant corner (2D, three cells of four, e.g. the toe of a cut): there
+// the three stress points surround the node, so the cross-set gradient is already linear-exact,
+// while the self-including boundary closure is unstable (spectral radius 1.2-1.45 per step on an
+// L-shaped lattice at C = 0.3-0.9; the corner lies on no face, so nothing constrains its
+// half-step).
+bool is_incomplete(int occupied, int dimension) {
+  return occupied < (1 << dimension);
+}
+
+bool needs_boundary_half_step(int occupied, int dimension) {
+  const bool reentrant_corner = dimension == 2 && occupied == (1 << dimension) - 1;
+  return is_incomplete(occupied, dimension) && !reentrant_corner;
+}
+
+}  // namespace
+
+StepOperatorBuilder::StepOperatorBuilder(const NodeSets& reference, const StepOptions& options,
+                                         std::vector<MirrorPlane> mirrors,
+                                         std::span<const std::uint8_t> mirror_axes)
+    : reference_(reference),
+      options_(options),
+      mirror_axes_(mirror_axes.begin(), mirror_axes.end()) {
+  operator_options_.kernel = Kernel(options.kernel, reference.dimension);
+  operator_options_.smoothing_length = options.h_over_dx * reference.spacing;
+  operator_options_.interpolation_order = options.interpolation_order;
+  operator_options_.mirrors = std::move(mirrors);
+  mirror_axes_.resize(reference.sph_nodes.size(), 0);
+}
+
+bool StepOperatorBuilder::filter_active() const {
+  return options_.hourglass_filter && reference_.dimension >= 2 && options_.hourglass_kappa > 0.0;
+}
+
+void StepOperatorBuilder::build(const Configuration& configuration, StepOperators& operators) {
+  classify(configuration, operators);
+  build_step_tables(configuration, operators);
+  build_filter_tables(configuration, operators);
+}
+
+void StepOperatorBuilder::classify(const Configuration& configuration, StepOperators& operators) {
+  // The cells around a node are counted from the topology: stress point p is the cell whose
+  // corners are its lower corner node plus {0, 1}^d. A node on a mirror plane also has the images
+  // of its cells across it, one more set per plane (docs/theory.md §2.6).
+  const int d = reference_.dimension;
+  const std::size_t n = configuration.sph_nodes.size();
+  cells_at_node_.assign(n, 0);
+  for (const LatticeIndex& lower : reference_.stress_point_index)
+    for (unsigned corner = 0; corner < (1u << d); ++corner) {
+      LatticeIndex index = lower;
+      for (int a = 0; a < d; ++a)
+        index[static_cast<std::size_t>(a)] += static_cast<std::int32_t>((corner >> a) & 1u);
+      const std::int32_t node = reference_.node_at(index);
+      if (node >= 0) ++cells_at_node_[static_cast<std::size_t>(node)];
+    }
+  operators.node_to_boundary_row.assign(n, -1);
+  operators.boundary_nodes.clear();
+  operators.incomplete_nodes.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const int occupied = cells_at_node_[i] << std::popcount(unsigned{mirror_axes_[i]});
+    if (occupied == 0)
+      throw RunError(fmt::format(
+          "the SPH node at {} belongs to no lattice cell (a shape vertex or a one-node-wide strip "
+          "that touches no cell), so nothing moves it; widen the shape to whole cells",
+          describe_point(configuration.sph_nodes, i)));
+    if (is_incomplete(occupied, d))
+      operators.incomplete_nodes.push_back(static_cast<std::int32_t>(i));
+    if (needs_boundary_half_step(occupied, d)) {
+      operators.node_to_boundary_row[i] =
+          static_cast<std::int32_t>(operators.boundary_nodes.size());
+      operators.boundary_nodes.push_back(static_cast<std::int32_t>(i));
+    }
+  }
+}
+
+void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
+                                            StepOperators& ops) {
+  const int d = reference_.dimension;
+  const PointCloud& nodes = configuration.sph_nodes;
+  const PointCloud& points = configuration.stress_points;
+  const OperatorOptions& options = operator_options_;
+  const double support = options.kernel.support_radius(options.smoothing_length);
+  const CellList node_cells(nodes, support);
+  const CellList point_cells(points, support);
+
+  StencilReport report;
+  build_cross_operator(points, node_cells, options, ops.nodes_to_points, stencil_, &report);
+  if (!report.degenerate_rows.empty())
+    throw RunError(fmt::format(
+        "the stress point at {} has a degenerate stencil (h/dx = {} is too small for its "
+        "neighbourhood)",
+        describe_point(points, static_cast<std::size_t>(report.degenerate_rows[0])),
+        options_.h_over_dx));
+  ops.compact_stencils = true;
+  for (std::size_t p = 0; p < ops.nodes_to_points.rows(); ++p)
+    ops.compact_stencils =
+        ops.compact_stencils &&
+        ops.nodes_to_points.row_start[p + 1] - ops.nodes_to_points.row_start[p] <= (1 << d);
+
+  // The incomplete nodes' closure: the lumped adjoint of the stress points' operator, with the
+  // node's own half-step value (which carries the face tractions) where it has one (docs/theory.md
+  // §5.3).
+  const std::size_t n = nodes.size();
+  const auto n_points = static_cast<std::int32_t>(points.size());
+  own_column_.assign(ops.incomplete_nodes.size(), -1);
+  for (std::size_t r = 0; r < ops.incomplete_nodes.size(); ++r)
+    if (ops.node_to_boundary_row[static_cast<std::size_t>(ops.incomplete_nodes[r])] >= 0)
+      own_column_[r] = n_points + ops.incomplete_nodes[r];
+  ops.incomplete_closure =
+      build_adjoint_operator(ops.nodes_to_points, points.volume, ops.incomplete_nodes, own_column_);
+
+  node_stencils_.resize(n);
+  WeightTable& table = ops.points_to_nodes;
+  reset_table(table, d);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto x = nodes.point(i);
+    const auto self = static_cast<std::int32_t>(i);
+    std::vector<StencilSource>& stencil = node_stencils_[i];
+    gather_stencil(x, point_cells, options, -1, stencil);
+    bool regular;
+    if (ops.node_to_boundary_row[i] < 0) {
+      regular = append_row(table, x, stencil, options, GradientReference::ShepardCentroid, -1);
+    } else {
+      // Boundary node: its own half-step value is the reference (docs/theory.md §2.2, step 2).
+      regular = append_row(table, x, stencil, options, GradientReference::Self, n_points + self);
+      if (!regular) {
+        // Rank-deficient compact stencil (e.g. a corner at h = 0.75 dx): add the half-step values
+        // of the neighbouring boundary nodes (docs/theory.md §5.1).
+        drop_last_row(table);
+        gather_stencil(x, node_cells, options, self, stencil_);
+        for (StencilSource s : stencil_)
+          if (ops.node_to_boundary_row[static_cast<std::size_t>(s.column)] >= 0) {
+            s.column += n_points;
+            stencil.push_back(s);
+          }
+        regular = append_row(table, x, stencil, options, GradientReference::Self, n_points + self);
+      }
+    }
+    if (!regular)
+      throw RunError(
+          fmt::format("the SPH node at {} has a degenerate stencil that even its "
+                      "boundary neighbours cannot complete",
+                      describe_point(nodes, i)));
+  }
+
+  report.degenerate_rows.clear();
+  if (ops.boundary_nodes.empty())  // every face is a mirror plane: no half-step rows
+    reset_table(ops.boundary_gradient, d);
+  else
+    build_collocated_gradient(nodes, node_cells, options, ops.boundary_nodes, ops.boundary_gradient,
+                              stencil_, &report);
+  if (!report.degenerate_rows.empty())
+    throw RunError(fmt::format(
+        "the boundary node at {} has a degenerate collocated stencil",
+        describe_point(nodes,
+                       static_cast<std::size_t>(ops.boundary_nodes[report.degenerate_rows[0]]))));
+}
+
+void StepOperatorBuilder::build_filter_tables(const Configuration& configuration,
+                                              StepOperators& ops) {
+  if (!filter_active()) return;
+  // A round trip through the stress points with first-order interpolation on a wider support, so
+  // that linear fields pass unchanged up to the boundary (docs/theory.md §3.3).
+  OperatorOptions filter_options = operator_options_;
+  filter_options.smoothing_length = options_.hourglass_h_over_dx * reference_.spacing;
+  filter_options.interpolation_order = 1;
+  const double filter_support =
+      filter_options.kernel.support_radius(filter_options.smoothing_length);
+  const CellList filter_node_cells(configuration.sph_nodes, filter_support);
+  const CellList filter_point_cells(configuration.stress_points, filter_support);
+  build_cross_operator(configuration.stress_points, filter_node_cells, filter_options,
+                       ops.filter_to_points, stencil_);
+  build_cross_operator(configuration.sph_nodes, filter_point_cells, filter_options,
+                       ops.filter_to_nodes, stencil_);
+  drop_gradients(ops.filter_to_points);  // the round trip only interpolates
+  drop_gradients(ops.filter_to_nodes);
+  share_row_weights(ops.filter_to_points);  // interior rows share one stencil: less memory
+  share_row_weights(ops.filter_to_nodes);   // traffic in the filter (docs/theory.md §3.3)
+}
+
+}  // namespace rktsph

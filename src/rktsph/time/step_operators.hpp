@@ -1,0 +1,98 @@
+// The operator tables of the RK-TSPH step and the one builder that makes them from a
+// configuration (docs/theory.md §2.6): classification of the nodes, the step's tables, the
+// hourglass filter's tables. A model's policy says when they are built: once on the reference
+// configuration (V1, V3, whose points do not move), or on the current configuration before every
+// step (a large-deformation model).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "rktsph/case/case_description.hpp"
+#include "rktsph/geometry/node_sets.hpp"
+#include "rktsph/physics/state.hpp"
+#include "rktsph/sph/adjoint_operator.hpp"
+#include "rktsph/sph/neighbour_search.hpp"
+#include "rktsph/sph/operators.hpp"
+#include "rktsph/stabilisation/hourglass_stiffness.hpp"
+
+namespace rktsph {
+
+/// The step's settings, resolved from the case's numerics once (the one copy the step reads).
+struct StepOptions {
+  KernelType kernel = KernelType::CubicSpline;
+  double h_over_dx = 0.75;
+  int interpolation_order = 0;
+  bool hourglass_filter = true;  // ignored in 1D, where midpoint stress points have no such mode
+  double hourglass_kappa = 0.1;
+  double hourglass_h_over_dx = 1.3;
+  std::optional<HourglassFields> hourglass_fields;  // unset: Velocity on compact stencils, else All
+  StressUpdate stress_update = StressUpdate::HalfStep;
+  HourglassStrength hourglass_stiffness;    // epsilon of docs/theory.md eq. 3.3; 0 = off
+  double hourglass_plastic_fraction = 0.0;  // psi of eq. 3.9, in flowing cells
+  double strain_hourglass_stiffness = 0.0;  // epsilon_s of docs/theory.md eq. 3.5; 0 = off
+  double artificial_viscosity = 0.0;        // alpha of docs/theory.md §2.7; 0 = off
+};
+
+/// When the operators are built (docs/theory.md §2.6).
+enum class OperatorPolicy {
+  ReferenceConfiguration,  ///< once, before the first step: the points do not move (V1, V3)
+  CurrentConfiguration,    ///< before every step, on the configuration of the state
+};
+
+/// The tables of the step and the classification of nodes they imply. Tables only: the settings
+/// stay in StepOptions.
+struct StepOperators {
+  WeightTable nodes_to_points;    ///< step 1: S -> V interpolation and gradient
+  WeightTable points_to_nodes;    ///< step 2: columns [0, nV) stress points, [nV, nV+nS) nodes
+  WeightTable boundary_gradient;  ///< step 1b: rows = boundary_nodes, columns = SPH nodes
+  std::vector<std::int32_t> boundary_nodes;        ///< nodes with incomplete stencils (step 1b)
+  std::vector<std::int32_t> node_to_boundary_row;  ///< -1 for interior nodes
+  /// Nodes whose 2^d cells are not all present (the boundary nodes and the re-entrant corners).
+  std::vector<std::int32_t> incomplete_nodes;
+  /// Their step 2 closure: the lumped adjoint of nodes_to_points (docs/theory.md eqs. 5.2, 5.3).
+  AdjointOperator incomplete_closure;
+  /// Every stress point's stencil is its own cell's corners (h small enough): the lattice
+  /// operators then commute in the interior (docs/theory.md §5.3).
+  bool compact_stencils = false;
+  WeightTable filter_to_points;  ///< first-order round trip of the filter (docs/theory.md §3.3)
+  WeightTable filter_to_nodes;
+};
+
+/// Builds StepOperators from a configuration, reusing its own buffers and the tables' arrays.
+class StepOperatorBuilder {
+ public:
+  /// `reference` gives the cells (which nodes are the corners of which stress point) and the
+  /// materials; `mirror_axes[n]` has bit a set when node n lies on a mirror plane normal to a.
+  StepOperatorBuilder(const NodeSets& reference, const StepOptions& options,
+                      std::vector<MirrorPlane> mirrors, std::span<const std::uint8_t> mirror_axes);
+
+  /// Everything: classify, then the step's tables, then the filter's. Throws RunError naming the
+  /// point if a stencil cannot be made regular.
+  void build(const Configuration& configuration, StepOperators& operators);
+  /// Boundary nodes and incomplete nodes from the node topology (docs/theory.md §2.6).
+  void classify(const Configuration& configuration, StepOperators& operators);
+  /// nodes_to_points, points_to_nodes, boundary_gradient, the incomplete nodes' closure.
+  void build_step_tables(const Configuration& configuration, StepOperators& operators);
+  /// The hourglass filter's round trip (no-op when the filter is off).
+  void build_filter_tables(const Configuration& configuration, StepOperators& operators);
+
+  /// The kernel, smoothing length, interpolation order and mirrors of the step's operators.
+  const OperatorOptions& operator_options() const { return operator_options_; }
+  /// True when the filter acts (2D and up, on, kappa > 0).
+  bool filter_active() const;
+
+ private:
+  const NodeSets& reference_;
+  StepOptions options_;
+  OperatorOptions operator_options_;
+  std::vector<std::uint8_t> mirror_axes_;
+  std::vector<std::int32_t> cells_at_node_;  // cells (stress points) with the node as a corner
+  std::vector<std::vector<StencilSource>> node_stencils_;  // stress points around each node
+  std::vector<StencilSource> stencil_;
+  std::vector<std::int32_t> own_column_;
+};
+
+}  // namespace rktsph
