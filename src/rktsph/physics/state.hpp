@@ -1,4 +1,4 @@
-// The persistent state of a run: the fields on the SPH nodes (docs/theory.md §2.2, Q2), and in 2D
+// The persistent state of a run: the fields on the SPH nodes (docs/theory.md §2.2), and in 2D
 // the generalised hourglass force of each stress-point cell (eq. 3.9), the only state a stress
 // point carries between steps.
 #pragma once

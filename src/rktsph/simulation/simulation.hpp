@@ -1,5 +1,5 @@
 // A run: the case turned into nodes, materials, a physics model, boundary conditions, the step
-// operators and the state; and the time loop, which observers watch (docs/theory.md §2.3).
+// operators and the state; and the time loop, which observers watch (docs/theory.md §2.2, §2.5).
 #pragma once
 
 #include <functional>
@@ -10,10 +10,10 @@
 
 #include "rktsph/boundary/boundary_conditions.hpp"
 #include "rktsph/case/case_description.hpp"
+#include "rktsph/core/checkpoint.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/models/dry_solid.hpp"
 #include "rktsph/models/pressure_projection.hpp"
-#include "rktsph/core/checkpoint.hpp"
 #include "rktsph/physics/state.hpp"
 #include "rktsph/time/rk_taylor_step.hpp"
 

@@ -40,7 +40,7 @@ struct StepOptions {
   HourglassStrength hourglass_stiffness;    // epsilon of docs/theory.md eq. 3.3; 0 = off
   double hourglass_plastic_fraction = 0.0;  // psi of eq. 3.9, in flowing cells
   double strain_hourglass_stiffness = 0.0;  // epsilon_s of docs/theory.md eq. 3.5; 0 = off
-  double artificial_viscosity = 0.0;        // alpha of prototype R7; 0 = off
+  double artificial_viscosity = 0.0;        // alpha of docs/theory.md §2.7; 0 = off
 };
 
 /// The operator tables of the step and the classification of nodes they imply.
@@ -63,7 +63,7 @@ struct StepOperators {
   /// Every stress point's stencil is its own cell's corners (h small enough): the lattice
   /// operators then commute in the interior (docs/theory.md §5.3).
   bool compact_stencils = false;
-  WeightTable filter_to_points;  ///< first-order round trip of the filter (prototype R6)
+  WeightTable filter_to_points;  ///< first-order round trip of the filter (docs/theory.md §3.3)
   WeightTable filter_to_nodes;
   double viscosity_length = 0.0;  ///< alpha * dx of the artificial viscosity (0 = off)
 };
@@ -77,7 +77,7 @@ StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& opt
                                    const std::vector<MirrorPlane>& mirrors);
 
 /// A correction applied after the RK-TSPH pass and its boundary conditions, before the step ends
-/// (the pressure projection of the saturated model, docs/theory.md §6.1). `time` is t^{n+1}.
+/// (the pressure projection of the saturated model, docs/theory.md §6.2). `time` is t^{n+1}.
 class StepProjection {
  public:
   virtual ~StepProjection() = default;
