@@ -23,11 +23,6 @@ void drop_last_row(WeightTable& table) {
     g.resize(size);
 }
 
-std::string describe_point(const PointCloud& points, std::size_t i) {
-  if (points.dimension == 1) return fmt::format("x = {:.6g} m", points.position[0][i]);
-  return fmt::format("(x, y) = ({:.6g}, {:.6g}) m", points.position[0][i], points.position[1][i]);
-}
-
 // Number of the 2^d lattice cells around a node that carry a stress point (mirror images
 // included).
 int occupied_cells(std::span<const StencilSource> stencil, const std::array<double, 3>& x,
@@ -132,12 +127,12 @@ StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& opt
       regular =
           append_row(table, x, stencil, operator_options, GradientReference::ShepardCentroid, -1);
     } else {
-      // Boundary node: own half-step value as reference (spec §2.2, step 2).
+      // Boundary node: own half-step value as reference (docs/theory.md §2.2, step 2).
       regular =
           append_row(table, x, stencil, operator_options, GradientReference::Self, n_points + self);
       if (!regular) {
         // Rank-deficient compact stencil (e.g. a corner at h = 0.75 dx): add the half-step values
-        // of the neighbouring boundary nodes (prototype finding R4).
+        // of the neighbouring boundary nodes (docs/theory.md §4.2, §7.1).
         drop_last_row(table);
         gather_stencil(x, node_cells, operator_options, self, extra);
         for (StencilSource s : extra)
@@ -171,7 +166,7 @@ StepOperators build_step_operators(const NodeSets& nodes, const StepOptions& opt
                        static_cast<std::size_t>(ops.boundary_nodes[report.degenerate_rows[0]]))));
 
   // Hourglass filter: round trip through the stress points with first-order interpolation on a
-  // wider support, so that linear fields pass unchanged up to the boundary (prototype R6).
+  // wider support, so that linear fields pass unchanged up to the boundary (docs/theory.md §3.3).
   ops.hourglass_filter = options.hourglass_filter && d >= 2 && options.hourglass_kappa > 0.0;
   ops.hourglass_kappa = options.hourglass_kappa;
   ops.compact_stencils = true;
@@ -345,7 +340,7 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
 
 void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
   // Step 1b: boundary nodes advance half a step with the collocated gradient; their half-step
-  // values join the stress points as sources of step 2 (spec §2.2, finding in §2.6).
+  // values join the stress points as sources of step 2 (docs/theory.md §2.2, §7.3).
   const auto& boundary = operators_.boundary_nodes;
   const int nf = model_.field_count();
   for (std::size_t r = 0; r < boundary.size(); ++r) {
