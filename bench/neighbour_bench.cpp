@@ -1,7 +1,7 @@
-// Neighbour search on the small-deformation layout (spec/algorithm.md §3.1): SPH nodes on a square
+// Neighbour search on the small-deformation layout (docs/theory.md §3.1): SPH nodes on a square
 // lattice of spacing dx, stress points at the cell centres. Times building the SPH-node ->
 // stress-point table (targets: nodes, sources: stress points), cell list included, as done once
-// per step in the large-deformation scheme (§3.4, line 1).
+// per step in a large-deformation scheme, whose nodes move.
 #include <benchmark/benchmark.h>
 
 #include <cstdint>

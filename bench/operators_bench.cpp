@@ -1,5 +1,5 @@
 // Applying the corrective SPH operators (docs/theory.md §4) on the small-deformation layout of
-// spec/algorithm.md §3.1: SPH nodes on a square lattice, stress points at the cell centres.
+// docs/theory.md §3.1: SPH nodes on a square lattice, stress points at the cell centres.
 // Times one apply_operator call (interpolation and gradient of five fields, the plane-strain
 // unknowns v_x, v_y, sigma_xx, sigma_yy, sigma_xy) in each direction of the step: SPH nodes ->
 // stress points (step 1) and stress points -> SPH nodes (step 2). The tables are built once,
@@ -170,7 +170,7 @@ BENCHMARK(BM_ApplyOperator)
     ->UseRealTime();
 
 /// Building both tables of a configuration (cell lists included); serial code, so this is the
-/// cost a large-deformation scheme would pay every step (spec/algorithm.md §3.4).
+/// cost a large-deformation scheme, whose nodes move, would pay every step.
 /// range(0): SPH nodes per side; range(1): h / dx in hundredths.
 void BM_BuildOperatorTables(benchmark::State& state) {
   const NodeSets nodes = square_node_sets(static_cast<int>(state.range(0)));

@@ -1,4 +1,4 @@
-// The full RK-TSPH step (docs/theory.md §2.2) on BAR-WAVE-2D (../shared/bench/bar-wave-2d.md),
+// The full RK-TSPH step (docs/theory.md §2.2) on BAR-WAVE-2D (docs/theory.md §8.11),
 // sizes S, M, L, XL, read from cases/bar-wave-2d-<size>/case.yaml. Only
 // `step().advance(state, dt)` is timed: no setup, no output, no probes. The step counts per
 // measurement are the benchmark's timing protocol (200 / 100 / 50 / 50).

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the benchmarks of bench/ and prints the BAR-WAVE-2D speed table (bench/README.md,
-# ../shared/bench/bar-wave-2d.md, "Timing protocol"). Called by `make bench` as
+# docs/theory.md §8.11). Called by `make bench` as
 #   tools/run_benchmarks.sh BUILD_DIR
 #
 # 1. Kernel benchmarks (operator application, neighbour tables) at each thread count, and the

@@ -1,5 +1,6 @@
 // Boundary conditions compiled from a case: which faces are free, where the stress increments are
-// projected (prototype R2), mirror planes, traction faces, and the errors for impossible input.
+// projected (docs/theory.md eq. 5.1), mirror planes, traction faces, and the errors for impossible
+// input.
 #include "rktsph/boundary/boundary_conditions.hpp"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,6 @@
-// Stress invariants, Lode angle and the invariant gradients m1, m2, m3 (spec §1.3) against
-// eigenvalue-based invariants (Eigen), physical load cases and central finite differences.
+// Stress invariants, Lode angle and the invariant gradients m1, m2, m3 (docs/theory.md
+// eqs. 1.6–1.7) against eigenvalue-based invariants (Eigen), physical load cases and central finite
+// differences.
 #include "rktsph/materials/invariants.hpp"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,9 @@
-// Perzyna Modified Cam-Clay on a single material point (spec §1.3, §1.5, Q5): the flow vector and
+// Perzyna Modified Cam-Clay on a single material point (docs/theory.md §1.3, §1.5): the flow
+// vector and
 // C1, C2, C3 against finite differences of the regular potential, the flow vector on the ellipse
-// against the seed's g = f / pc, its bound near the hydrostatic axis, the overstress on and off the
-// ellipse, zero volumetric flow at the critical state, the normal compression line under slow
-// isotropic compression, and the sub-step stiffness.
+// against the thesis's g = f / pc (eq. 1.8), its bound near the hydrostatic axis, the overstress on
+// and off the ellipse, zero volumetric flow at the critical state, the normal compression line
+// under slow isotropic compression, and the sub-step stiffness.
 #include "rktsph/materials/perzyna_modified_cam_clay.hpp"
 
 #include <gtest/gtest.h>
@@ -45,13 +46,13 @@ PerzynaModifiedCamClay make_material(double fluidity, double exponent = 1.0) {
   return PerzynaModifiedCamClay(1800.0, elastic, parameters);
 }
 
-/// M(theta) = 6 sin(phi) / (3 - sin(phi) sin 3theta), spec §1.5.
+/// M(theta) = 6 sin(phi) / (3 - sin(phi) sin 3theta), docs/theory.md §1.5.
 double slope_m(double sin_3theta) {
   const double sin_phi = std::sin(kFrictionAngle * kPi / 180.0);
   return 6.0 * sin_phi / (3.0 - sin_phi * sin_3theta);
 }
 
-/// The seed's g = (q^2 + M^2 p (p - pc)) / pc from eigenvalue invariants, independent of the
+/// The thesis's g = (q^2 + M^2 p (p - pc)) / pc from eigenvalue invariants, independent of the
 /// material.
 double seed_potential(const SymmetricTensor& stress, double pc) {
   const auto invariants = principal_invariants(stress);
@@ -105,7 +106,7 @@ TEST(PerzynaModifiedCamClay, FlowVectorAndCoefficientsMatchGradientOfRegularPote
 }
 
 TEST(PerzynaModifiedCamClay, FlowVectorOnEllipseIsGradientOfSeedPotential) {
-  // On f = 0 the regular flow vector must be the associated one of the seed (eq. 2.58).
+  // On f = 0 the regular flow vector must be the associated one of the thesis (eq. 1.8).
   const PerzynaModifiedCamClay material = make_material(1.0);
   std::mt19937 generator(5);
   std::uniform_real_distribution<double> pressure(0.1, 0.9), lode(-28.0, 28.0);
@@ -130,7 +131,7 @@ TEST(PerzynaModifiedCamClay, FlowVectorStaysBoundedNearHydrostaticAxis) {
   // is 2q dq/pc (size sqrt(3/2) 2q/pc, as |dq| = sqrt(3/2)) plus the theta term
   // 2q^2/(M pc) |dM/dtheta| |dtheta| with |dtheta| = sqrt(3/2)/q and |dM/dtheta| <= 18 sin^2(phi)
   // /(3 - sin phi)^2 = 0.50 for phi = 25°, M >= 0.82: at most 1.5 q/pc. Bound: 5 q/pc.
-  // (The seed's theta term, 2M p (p - pc)/pc dM, would instead grow like pc/q.)
+  // (The thesis's theta term, 2M p (p - pc)/pc dM, would instead grow like pc/q.)
   const PerzynaModifiedCamClay material = make_material(1.0);
   std::mt19937 generator(23);
   for (double pressure_ratio : {0.1, 0.3, 0.8, 1.2}) {
@@ -225,7 +226,8 @@ TEST(PerzynaModifiedCamClay, NoVolumetricFlowAtCriticalState) {
     EXPECT_NEAR(strain_rate[0] + strain_rate[1] + strain_rate[2], 0.0, 1e-10 * size);
     EXPECT_NEAR(internal_rate[PerzynaModifiedCamClay::kPreconsolidationPressure], 0.0,
                 1e-10 * size * kPreconsolidation * 20.0);
-    // The equivalent strain rate of Q19, computed here: with zero trace it is sqrt(2/3) |rate|.
+    // The equivalent strain rate of docs/theory.md §1.3, computed here: with zero trace it is
+    // sqrt(2/3) |rate|.
     EXPECT_NEAR(internal_rate[PerzynaModifiedCamClay::kEquivalentStrain],
                 std::sqrt(2.0 / 3.0) * size, 1e-9 * size);
   }
@@ -243,7 +245,8 @@ TEST(PerzynaModifiedCamClay, WetSideCompactsAndHardensDrySideDilatesAndSoftens) 
         rotated_principal(principal_from_invariants(p, q, kPi / 6.0), Eigen::Matrix3d::Identity()),
         internal, strain_rate, internal_rate);
     const double volumetric = strain_rate[0] + strain_rate[1] + strain_rate[2];
-    // Hardening law, spec §1.5: pc_rate = -((1 + e0)/(lambda - kappa)) pc tr(eps_vp_rate).
+    // Hardening law, docs/theory.md §1.5: pc_rate = -((1 + e0)/(lambda - kappa)) pc
+    // tr(eps_vp_rate).
     const double factor = (1.0 + 1.0) / (0.2 - 0.05);
     EXPECT_NEAR(internal_rate[1], -factor * kPreconsolidation * volumetric,
                 1e-12 * factor * kPreconsolidation * std::abs(volumetric));

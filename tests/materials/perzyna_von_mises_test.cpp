@@ -1,6 +1,6 @@
-// Perzyna Von Mises on a single material point (spec §1.3, §1.4, §2.1): closed-form relaxation,
-// the slow-rate limit of hardening and softening, the flow vector against finite differences of
-// q, and the sub-step stiffness.
+// Perzyna Von Mises on a single material point (docs/theory.md §1.3, §1.4, §2.8): closed-form
+// relaxation, the slow-rate limit of hardening and softening, the flow vector against finite
+// differences of q, and the sub-step stiffness.
 #include "rktsph/materials/perzyna_von_mises.hpp"
 
 #include <gtest/gtest.h>
@@ -69,7 +69,7 @@ TEST(PerzynaVonMises, UniaxialRelaxationIsExponential) {
     EXPECT_NEAR(state.stress[2], 0.0, 1e-6);
     EXPECT_NEAR(state.strain[0], 0.0, 1e-15);
     // The axial viscoplastic strain is what the stress lost, over E; in uniaxial flow it equals
-    // the equivalent strain of Q19.
+    // the equivalent strain of docs/theory.md §1.3.
     EXPECT_NEAR(state.internal[PerzynaVonMises::kEquivalentStrain],
                 (initial - state.stress[0]) / young, 1e-6 * (initial - yield) / young);
     EXPECT_EQ(state.internal[PerzynaVonMises::kYieldStress], yield);
@@ -77,7 +77,7 @@ TEST(PerzynaVonMises, UniaxialRelaxationIsExponential) {
 }
 
 /// Uniaxial stress at constant strain rate. Rate-independent reference: with
-/// eps_vp_eq = eps_vp_xx in uniaxial flow (Q19), sigma = Y0 + H eps_vp_xx, i.e. the effective 1D
+/// eps_vp_eq = eps_vp_xx in uniaxial flow (§1.3), sigma = Y0 + H eps_vp_xx, i.e. the effective 1D
 /// plastic modulus is H itself, and the tangent modulus against total strain is E_T = E H/(E + H).
 /// The Perzyna overstress d = sigma - Y satisfies d_rate = E eps_rate - (E + H) gamma d / Y, so
 /// after the short transient d -> d_qs = E eps_rate Y / ((E + H) gamma), and since
@@ -173,7 +173,7 @@ TEST(PerzynaVonMises, FlowVectorAndCoefficientsMatchGradientOfQ) {
 }
 
 TEST(PerzynaVonMises, EquivalentStrainRateIsFluidityTimesOverstress) {
-  // Spec §1.4: with m = (3/2) s/q, sqrt(2/3 e_vp:e_vp) = gamma Psi; checked against the
+  // docs/theory.md §1.4: with m = (3/2) s/q, sqrt(2/3 e_vp:e_vp) = gamma Psi; checked against the
   // deviatoric norm of the returned strain rate computed here.
   const PerzynaVonMises material = make_material(5e5, 2.0, 1.5);
   std::mt19937 generator(2);
@@ -234,7 +234,7 @@ TEST(PerzynaVonMises, SourceStiffnessIsRelaxationRateOfQ) {
         1.0, 1e-6)
         << "N = " << exponent << ", q = " << q;
   }
-  // N = 1: 3 G gamma / Y at any state (spec §2.1), also inside the yield surface.
+  // N = 1: 3 G gamma / Y at any state (docs/theory.md eq. 2.7), also inside the yield surface.
   const PerzynaVonMises linear = make_material(0.0, 3.0);
   const std::array<double, 2> internal = {0.0, 100e3};
   const double expected = 3.0 * linear.elastic().shear_modulus() * 3.0 / 100e3;

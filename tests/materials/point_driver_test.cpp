@@ -1,5 +1,5 @@
 // The single-point driver: mixed strain/stress control against closed-form linear elasticity,
-// time-dependent rates, the sub-step rule of spec §2.1, recording, and its errors.
+// time-dependent rates, the sub-step rule of docs/theory.md eq. 2.7, recording, and its errors.
 #include "rktsph/materials/point_driver.hpp"
 
 #include <gtest/gtest.h>

@@ -88,7 +88,7 @@ inline SymmetricTensor finite_difference_gradient(
 }
 
 /// Least-squares coefficients (C1, C2, C3) of `gradient` on m1 = I, m2 = s/(2 sqrtJ2) and
-/// m3 = s s - (2/3) J2 I, all built here from the matrix of `stress` (spec §1.3).
+/// m3 = s s - (2/3) J2 I, all built here from the matrix of `stress` (docs/theory.md eq. 1.7).
 inline std::array<double, 3> project_on_invariant_gradients(const SymmetricTensor& gradient,
                                                             const SymmetricTensor& stress) {
   const Eigen::Matrix3d matrix = to_matrix(stress);

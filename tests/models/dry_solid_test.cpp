@@ -1,5 +1,5 @@
 // The dry-solid model inside the step: the static state of a damped column under gravity
-// (prototype finding R5) and the plane-stress source.
+// (docs/theory.md §2.8) and the plane-stress source.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -58,8 +58,8 @@ TEST(DrySolid, FrozenFluxCouplingReachesTheExactStaticStateUnderDamping) {
 }
 
 TEST(DrySolid, AdditiveCouplingIsBiasedByHalfTheDampingPerStep) {
-  // The spec's additive split damps the gravity increment but not the flux increment, so the
-  // static stress gradient comes out (1 - xi dt/2) rho g (prototype-findings §6, finding 2).
+  // The additive split damps the gravity increment but not the flux increment, so the
+  // static stress gradient comes out (1 - xi dt/2) rho g (docs/theory.md eq. 2.6).
   double xi_dt = 0.0;
   const double bias = static_stress_error("additive", &xi_dt);
   EXPECT_NEAR(bias, 0.5 * xi_dt, 0.1 * 0.5 * xi_dt) << "xi dt = " << xi_dt;

@@ -1,5 +1,5 @@
-// The saturated v-pw model and its pressure projection (docs/theory.md §6, algorithm.md §6,
-// prototype-vpw-findings.md): the system matrix K of eq. 6.3 (assembly, symmetry, positive
+// The saturated v-pw model and its pressure projection (docs/theory.md §6,
+// §7.2): the system matrix K of eq. 6.3 (assembly, symmetry, positive
 // definiteness with mirror planes), conjugate-gradient convergence against the Chebyshev bound,
 // and the two limits of a column loaded on a drained top: undrained (k -> 0, p_w = Skempton B q
 // away from the top) and drained (k large, p_w ~ 0).
@@ -253,7 +253,7 @@ void expect_undrained_skempton_pressure(bool hourglass_filter,
                                         const std::string& fields = "velocity") {
   // k = 1e-12 m/s: c_v t / H^2 ~ 1e-11 over the run, so no real drainage; with the incremental
   // projection (beta = 1) the stabilisation term acts on pressure increments only and drains
-  // nothing at rest (prototype-vpw §3.1; beta = 0 would lose 27 % here). The undrained column
+  // nothing at rest (docs/theory.md §7.2, S3; beta = 0 would lose 27 % here). The undrained column
   // then carries p_w = B q, B = alpha Q / (M + alpha^2 Q).
   ColumnSetup setup;
   setup.hydraulic_conductivity = 1e-12;
@@ -265,10 +265,10 @@ void expect_undrained_skempton_pressure(bool hourglass_filter,
   const double q = biot_modulus(setup), alpha = setup.biot_coefficient;
   const double skempton = alpha * q / (constrained_modulus() + alpha * alpha * q);
   // Away from the top: the drained-top boundary layer is 2-3 nodes thick with a 0.4 % overshoot
-  // below it (prototype-vpw §3.1); keep 4 dx out. Tolerance 1 % of B q: at an undrained Courant
-  // number of ~19 the implicit solve damps the undrained ringing to ~1e-4 within ~20 steps
-  // (prototype §2.1), and the 5-step ramp keeps the drained-skeleton ringing small; the failure
-  // modes it must catch are 10-30 % (beta = 0: 27 %; alpha missing from B: 11 %).
+  // below it (docs/theory.md §7.2, S7); keep 4 dx out. Tolerance 1 % of B q: at an undrained
+  // Courant number of ~19 the implicit solve damps the undrained ringing to ~1e-4 within ~20 steps
+  // (docs/theory.md §7.2, S5), and the 5-step ramp keeps the drained-skeleton ringing small; the
+  // failure modes it must catch are 10-30 % (beta = 0: 27 %; alpha missing from B: 11 %).
   int checked = 0;
   for (const PressureSample& sample : pressures(simulation)) {
     if (sample.y > setup.height - 4.0 * setup.spacing + 1e-9) continue;

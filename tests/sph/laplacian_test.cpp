@@ -1,5 +1,5 @@
-// The Morris SPH Laplacian of the pore-pressure equation (docs/theory.md §6.2, prototype-vpw
-// R1/R2): consistency scale, exactness on quadratics, second-order accuracy in the interior, and
+// The Morris SPH Laplacian of the pore-pressure equation (docs/theory.md §6.3,
+// §7.2): consistency scale, exactness on quadratics, second-order accuracy in the interior, and
 // the symmetry and sign structure of Ltilde = diag(V_eff) L with mirror planes (half volumes).
 #include "rktsph/sph/laplacian.hpp"
 
@@ -75,13 +75,14 @@ TEST(LaplacianScale, MatchesHandDerivedValueIn1D) {
   const double expected = 2.0 / (2.0 * dx * pair * dx * dx);
   const Kernel kernel(KernelType::CubicSpline, 1);
   EXPECT_NEAR(laplacian_consistency_scale(kernel, h, dx, 1), expected, 1e-12 * expected);
-  // Independent numbers of the Python prototype (prototype-vpw §5 item 1), quoted to 4 decimals.
+  // Independent numbers of the Python prototype (docs/theory.md §7.2, S1), quoted to 4 decimals.
   EXPECT_NEAR(laplacian_consistency_scale(kernel, h, dx, 1), 1.2727, 1e-4);
 }
 
 TEST(LaplacianScale, MatchesPrototypeIn2D) {
-  // prototype-vpw §4: L(|x|^2) = 2.978 without the scale at h = 0.75 dx (factor 1.343, given as
-  // 1.3434 in §5), and 3.923 at h = 1.2 dx (factor 1.020). Quoted to 3-4 digits.
+  // docs/theory.md §7.2, S1: L(|x|^2) = 2.978 without the scale at h = 0.75 dx
+  // (factor 1.343, 1.3434 to four decimals), and 3.923 at h = 1.2 dx (factor 1.020). Quoted to 3-4
+  // digits.
   const Kernel kernel(KernelType::CubicSpline, 2);
   const double dx = 0.5;
   EXPECT_NEAR(laplacian_consistency_scale(kernel, 0.75 * dx, dx, 2), 4.0 / 2.978, 2e-4);
@@ -185,7 +186,7 @@ TEST(Laplacian, IsSecondOrderAccurateInTheInterior) {
 
 TEST(Laplacian, MirrorPlanesHalveVolumesAndKeepTheMatrixSymmetric) {
   // Mirrors at x = 0 and y = 0 (a corner): the node on one plane stands for both halves of the
-  // mirrored domain (V/2), the corner node for four quarters (V/4) (prototype-vpw R2).
+  // mirrored domain (V/2), the corner node for four quarters (V/4) (docs/theory.md §7.2, S2).
   const double dx = 0.25;
   const NodeSets nodes = rectangle_lattice(1.5, 2.0, dx);
   const OperatorOptions options = options_for(2, 0.75 * dx, {{0, 0.0}, {1, 0.0}});

@@ -167,9 +167,9 @@ TEST(NeighbourSearch, LatticeCountsMatchHandCountedShells) {
 }
 
 TEST(NeighbourSearch, StressPointLayoutCountsFromTheSpec) {
-  // spec §3.1: SPH nodes on a lattice, stress points at cell centres. A cell centre has 4 nodes at
-  // 0.707 dx, 8 at 1.58 dx, 4 at 2.12 dx. So support 1.5 dx (h = 0.75 dx) gives 4 and support
-  // 2.4 dx (h = 1.2 dx) gives 16, for stress points and for interior nodes alike.
+  // docs/theory.md §3.1, §4.6: SPH nodes on a lattice, stress points at cell centres. A cell centre
+  // has 4 nodes at 0.707 dx, 8 at 1.58 dx, 4 at 2.12 dx. So support 1.5 dx (h = 0.75 dx) gives 4
+  // and support 2.4 dx (h = 1.2 dx) gives 16, for stress points and for interior nodes alike.
   const double spacing = 0.25;
   const int per_side = 10;
   const PointCloud nodes = lattice(2, per_side, spacing, 0.0);

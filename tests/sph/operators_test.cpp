@@ -181,8 +181,8 @@ TEST(CrossOperator, OneDimensionalBarAtCompactSupport) {
 
 TEST(SelfReferencedStencil, BoundaryNodesWithOwnValueAreExactInOneAndTwoDimensions) {
   // Step-2 stencil of a boundary node: neighbouring stress points plus the node's own half-step
-  // value (column n_stress + i), spec §2.2. Exact for linear fields at ends, edges and — with the
-  // neighbouring boundary nodes added (prototype R4) — corners.
+  // value (column n_stress + i), docs/theory.md §2.2. Exact for linear fields at ends, edges and —
+  // with the neighbouring boundary nodes added (docs/theory.md §4.2) — corners.
   for (int dimension : {1, 2}) {
     const NodeSets nodes =
         dimension == 1 ? bar_lattice(10.0, 0.5) : rectangle_lattice(1.0, 0.5, 0.05);

@@ -1,6 +1,6 @@
 // A re-entrant (concave) corner, e.g. the toe of a vertical cut, keeps the interior stencil
 // (rk_taylor_step.cpp, needs_boundary_half_step): the full step on an L-shaped lattice must be
-// neutrally stable (spectral radius <= 1, prototype finding R10). With the corner given the
+// neutrally stable (spectral radius <= 1, docs/theory.md §5.3). With the corner given the
 // boundary half-step instead, the radius was 1.22-1.45 per step.
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-// The RK-TSPH step against exact solutions, and its stability (prototype finding R10):
+// The RK-TSPH step against exact solutions, and its stability (docs/theory.md §2.4):
 // - the 1D bar at Courant 1 reproduces the characteristics solution exactly (staggered
-//   Lax-Wendroff at h = 0.75 dx, spec §2.4);
+//   Lax-Wendroff at h = 0.75 dx, docs/theory.md §2.4);
 // - a 2D plane wave keeps the uniaxial-strain plateau and zero transverse velocity;
 // - the spectral radius of the full linear step, every boundary type included, is <= 1;
 // - a seeded checkerboard is neutral without the hourglass filter and decays as (1 - kappa)^n

@@ -5,10 +5,10 @@
 //      harmonic_column.py, strip_undrained.py, shear_band.py, vertical_cut.py and bearing.py with
 //      the options written in that script (one command per file);
 //  (b) independent physics: closed forms derived by hand, limits, conservation laws, residuals of
-//      the governing equations by finite differences, and the numbers quoted in
-//      spec/validation.md and spec/algorithm.md Appendix A.
+//      the governing equations by finite differences, and the numbers quoted in docs/theory.md
+//      chapter 8.
 // Tolerances are set by the printed precision of the CSVs, by the truncation error of the check
-// itself, or by the accuracy the spec quotes; each is explained where it is used.
+// itself, or by the accuracy docs/theory.md chapter 8 quotes; each is explained where it is used.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -142,7 +142,7 @@ std::function<double(double)> ramp_to(double value, double duration) {
 // ================================================================================================
 // 1. Elastic bar
 
-// Shared with the Python presets (validation.md §4.2 [R]): L = 10 m, E = 100 MPa, ρ = 2000 kg/m³.
+// Shared with the Python presets (docs/theory.md §8.2): L = 10 m, E = 100 MPa, ρ = 2000 kg/m³.
 constexpr double kBarLength = 10.0;
 constexpr double kBarModulus = 1e8;
 constexpr double kBarDensity = 2000.0;
@@ -151,7 +151,7 @@ constexpr double kBarVelocity = -0.1;
 TEST(ElasticBarTest, SpeedAndImpedanceAreTheQuotedOnes) {
   const ElasticBar bar(kBarLength, kBarModulus, kBarDensity, BarEnd::free_end(),
                        BarEnd::velocity(step_to(kBarVelocity)));
-  // validation.md §4.2: c = 223.61 m/s, Z = 4.472e5 Pa·s/m, plateau 44.72 kPa (4–5 digits quoted).
+  // docs/theory.md §8.2: c = 223.61 m/s, Z = 4.472e5 Pa·s/m, plateau 44.72 kPa (4–5 digits quoted).
   EXPECT_NEAR(bar.wave_speed(), 223.61, 0.005);
   EXPECT_NEAR(bar.impedance(), 4.472e5, 50.0);
   EXPECT_NEAR(bar.stress(kBarLength / 2, 0.03), -44.72e3, 5.0);
@@ -236,7 +236,7 @@ TEST(ElasticBarTest, FreeEndMidBarStressFollowsAppendixA1) {
 }
 
 TEST(ElasticBarTest, FixedEndMidBarStressIsAStaircase) {
-  // validation.md §5.3.2: each passage of a front adds Z·V0 (compressive for V0 < 0) at L/2,
+  // docs/theory.md §8.2: each passage of a front adds Z·V0 (compressive for V0 < 0) at L/2,
   // without bound, and v alternates between V0 and 0.
   const ElasticBar bar(kBarLength, kBarModulus, kBarDensity, BarEnd::fixed_end(),
                        BarEnd::velocity(step_to(kBarVelocity)));
@@ -247,7 +247,7 @@ TEST(ElasticBarTest, FixedEndMidBarStressIsAStaircase) {
     EXPECT_NEAR(bar.stress(kBarLength / 2, time), fronts * step, 1e-9 * std::abs(step)) << fronts;
     EXPECT_NEAR(bar.velocity(kBarLength / 2, time), fronts % 2 == 1 ? kBarVelocity : 0.0, 1e-12);
   }
-  // validation.md §5.3.2 quotes σ(L/2, 0.079 s) = −89.4 kPa and σ(L/2, 0.359 s) = −357.8 kPa.
+  // docs/theory.md §8.2 quotes σ(L/2, 0.079 s) = −89.4 kPa and σ(L/2, 0.359 s) = −357.8 kPa.
   EXPECT_NEAR(bar.stress(kBarLength / 2, 0.079), -89.4e3, 50.0);
   EXPECT_NEAR(bar.stress(kBarLength / 2, 0.359), -357.8e3, 50.0);
 }
@@ -353,7 +353,7 @@ TEST(ElasticBarTest, RejectsBadInput) {
 // ================================================================================================
 // 2. Viscoplastic bar
 
-/// validation.md §4.3 [R]: L = 10 m, E = 100 MPa, ρ = 2000, Y0 = 100 kPa, γ = 1/s, N = 1, fixed
+/// docs/theory.md §8.3: L = 10 m, E = 100 MPa, ρ = 2000, Y0 = 100 kPa, γ = 1/s, N = 1, fixed
 /// left end, right velocity ramped in 2 ms to V0 with Z|V0| = 0.6 Y0 (viscoplastic_bar.py
 /// defaults).
 ViscoplasticBarParameters section_4_3_bar(double hardening, int cells) {
@@ -445,14 +445,14 @@ TEST(ViscoplasticBarTest, MatchesPythonMocWithoutHardening) {
 }
 
 TEST(ViscoplasticBarTest, MatchesPythonMocWithSofteningBeforeLocalisation) {
-  // viscoplastic_bar.py --H=-1e7. validation.md §4.3: after about 0.075 s the strain collapses into
-  // the boundary cell and the result is not mesh-converged, so only the earlier part is compared,
-  // with the same printed-precision tolerance as without softening.
+  // viscoplastic_bar.py --H=-1e7. docs/theory.md §8.3: after about 0.075 s the strain collapses
+  // into the boundary cell and the result is not mesh-converged, so only the earlier part is
+  // compared, with the same printed-precision tolerance as without softening.
   const ReferenceFile file = read_reference("viscoplastic_bar_softening.csv");
   ASSERT_EQ(file.tables.size(), 1u);
   ViscoplasticBar bar(section_4_3_bar(-1e7, 400));
   EXPECT_GE(compare_with_python_history(bar, file.tables[0], 0.075, 1e-6, 1e-5), 30);
-  // validation.md §4.3 with H = −E/10: ε_vp(0, 0.1 s) ≈ −0.11 and |σ| drops to about 22 kPa
+  // docs/theory.md §8.3 with H = −E/10: ε_vp(0, 0.1 s) ≈ −0.11 and |σ| drops to about 22 kPa
   // (half a unit of the quoted digits).
   bar.advance_to(0.1);
   EXPECT_NEAR(bar.plastic_strain()[0], -0.11, 0.005);
@@ -460,7 +460,7 @@ TEST(ViscoplasticBarTest, MatchesPythonMocWithSofteningBeforeLocalisation) {
 }
 
 TEST(ViscoplasticBarTest, ReproducesTheQuotedFixedEndNumbers) {
-  // validation.md §4.3 (H = 0): arrival at L/c = 0.0447 s, ε_vp(0, 0.1 s) = −1.61e-3, and a peak
+  // docs/theory.md §8.3 (H = 0): arrival at L/c = 0.0447 s, ε_vp(0, 0.1 s) = −1.61e-3, and a peak
   // |σ(0,t)| = 114.6 kPa at t = 0.0471 s. The quoted peak is what the script prints with
   // --every 10 (every 10th step from step 1); the peak over every step is 116.9 kPa at 0.0467 s
   // (viscoplastic_bar.py --every 1 gives 116.93/116.92/116.91 kPa with 400/800/1600 cells).
@@ -495,7 +495,7 @@ TEST(ViscoplasticBarTest, ReproducesTheQuotedFixedEndNumbers) {
 }
 
 TEST(ViscoplasticBarTest, ConvergesUnderRefinement) {
-  // validation.md §4.3: 400 and 800 cells agree to 4 digits at t = 0.07 s. Checked on σ and ε_vp
+  // docs/theory.md §8.3: 400 and 800 cells agree to 4 digits at t = 0.07 s. Checked on σ and ε_vp
   // at the fixed end (where flow is strongest) and σ at mid-bar.
   ViscoplasticBar coarse(section_4_3_bar(0.0, 400));
   ViscoplasticBar fine(section_4_3_bar(0.0, 800));
@@ -515,7 +515,7 @@ TEST(ViscoplasticBarTest, ConvergesUnderRefinement) {
 }
 
 /// Relative error of the front stress against the decay law once the front has travelled
-/// `distance` (validation.md §4.3 check: step V0 with Z|V0| = 2 Y0, H = 0).
+/// `distance` (docs/theory.md §8.3 check: step V0 with Z|V0| = 2 Y0, H = 0).
 double front_decay_error(int cells, double distance) {
   ViscoplasticBarParameters p = section_4_3_bar(0.0, cells);
   const double impedance = std::sqrt(p.young_modulus * p.density);
@@ -533,7 +533,7 @@ double front_decay_error(int cells, double distance) {
 }
 
 TEST(ViscoplasticBarTest, FrontFollowsTheDecayLaw) {
-  // validation.md §4.3: relative error 1.0e-2 (200 cells) and 2.6e-3 (800 cells) at about 1.14 m,
+  // docs/theory.md §8.3: relative error 1.0e-2 (200 cells) and 2.6e-3 (800 cells) at about 1.14 m,
   // i.e. first order at the (discontinuous) front. Asserted: within 10 % of those errors, and a
   // 4× finer grid cuts the error by at least 3.
   const double coarse = front_decay_error(200, 1.15);
@@ -543,7 +543,7 @@ TEST(ViscoplasticBarTest, FrontFollowsTheDecayLaw) {
   EXPECT_GT(std::abs(coarse) / std::abs(fine), 3.0);
   // Beyond 2ℓ the validation tolerance is 10 %; the reference itself is far inside it.
   const double decay_length = viscoplastic_decay_length(1e8, 2000.0, 1e5, 1.0);
-  EXPECT_NEAR(decay_length, 0.4472, 0.0001);  // validation.md §4.3
+  EXPECT_NEAR(decay_length, 0.4472, 0.0001);  // docs/theory.md §8.3
   EXPECT_LT(std::abs(front_decay_error(400, 2.0 * decay_length)), 1e-2);
 }
 
@@ -605,12 +605,12 @@ TEST(ViscoplasticBarTest, DecayLawFunction) {
 // 3. Terzaghi
 
 TEST(TerzaghiTest, DegreeOfConsolidationKnownValues) {
-  // Classical table values (validation.md §6.4.2; brief): U = 0.500 at Tv = 0.197, 0.900 at 0.848,
+  // Classical table values (docs/theory.md §8.8): U = 0.500 at Tv = 0.197, 0.900 at 0.848,
   // U(1) = 0.931; quoted to 3 digits, so 6e-4 allows the rounding of the quoted value.
   EXPECT_NEAR(degree_of_consolidation(0.197), 0.500, 6e-4);
   EXPECT_NEAR(degree_of_consolidation(0.848), 0.900, 6e-4);
   EXPECT_NEAR(degree_of_consolidation(1.0), 0.931, 6e-4);
-  // Spot values of the table in §6.4.2 (3 digits).
+  // Spot values of the table in docs/theory.md §8.8 (3 digits).
   const double tv[] = {0.05, 0.1, 0.2, 0.5, 1.0};
   const double base[] = {0.997, 0.949, 0.772, 0.371, 0.108};
   const double middle[] = {0.886, 0.736, 0.553, 0.262, 0.076};
@@ -783,7 +783,7 @@ TEST(HarmonicColumnTest, MatchesPythonProfiles) {
           << pi1 << " " << z;
     }
   }
-  // validation.md headline: (Π1, Π2) = (1e-3, 1) gives |p(L)| = 1.683 q0.
+  // The u–p column at (Π1, Π2) = (1e-3, 1) gives |p(L)| = 1.683 q0.
   EXPECT_NEAR(HarmonicColumnSolution(HarmonicColumn::dimensionless(1e-3, 1.0)).pressure_ratio(1.0),
               1.683, 6e-4);
 }
@@ -926,14 +926,14 @@ double exact_undamped_base_stress(const GravityColumn& column, double time) {
 }
 
 TEST(GravityColumnTest, StaticStressesAndPeriod) {
-  // validation.md §4.5.1: K0 = 0.4286, c_p = 259.4 m/s, T1 = 0.154 s.
+  // docs/theory.md §8.5: K0 = 0.4286, c_p = 259.4 m/s, T1 = 0.154 s.
   EXPECT_NEAR(earth_pressure_at_rest(0.3), 0.4286, 5e-5);
   EXPECT_DOUBLE_EQ(geostatic_vertical_stress(2000.0, 9.81, 10.0), -196200.0);
   EXPECT_NEAR(geostatic_horizontal_stress(2000.0, 9.81, 10.0, 0.3), -196200.0 * 0.3 / 0.7, 1e-9);
   const GravityColumn column = default_column(0.0, 0.0);
   EXPECT_NEAR(gravity_column_wave_speed(column), 259.4, 0.05);
   EXPECT_NEAR(gravity_column_fundamental_period(column), 0.154, 5e-4);
-  // Ramp amplitude A = 0.068 for t_r = 0.5 s (validation.md), 1 for a sudden load.
+  // Ramp amplitude A = 0.068 for t_r = 0.5 s (docs/theory.md §8.5), 1 for a sudden load.
   const double omega1 = 2.0 * kPi / gravity_column_fundamental_period(column);
   EXPECT_NEAR(ramp_oscillation_amplitude(omega1, 0.5), 0.068, 5e-4);
   EXPECT_EQ(ramp_oscillation_amplitude(omega1, 0.0), 1.0);
@@ -977,7 +977,8 @@ TEST(GravityColumnTest, ModalSumConvergesToTheExactWaveSolution) {
           << ramp << " " << time;
     }
   }
-  // Sudden load: peak exactly 2× static at t = 2H/c (validation.md quotes 1.99 with 60 modes).
+  // Sudden load: peak exactly 2× static at t = 2H/c (docs/theory.md §8.5; a 60-mode sum
+  // gives 1.99).
   const GravityColumn sudden = default_column(0.0, 0.0);
   const double half_period = 0.5 * gravity_column_fundamental_period(sudden);
   EXPECT_NEAR(exact_undamped_base_stress(sudden, half_period), -2.0 * weight, 1e-9 * weight);
@@ -988,7 +989,7 @@ TEST(GravityColumnTest, ModalSumConvergesToTheExactWaveSolution) {
 }
 
 TEST(GravityColumnTest, RampLeavesTheQuotedOscillation) {
-  // validation.md §4.5.1: after a 0.5 s ramp each mode oscillates about its static value with
+  // docs/theory.md §8.5: after a 0.5 s ramp each mode oscillates about its static value with
   // relative amplitude A_n = |sin(ω_n t_r/2)|/(ω_n t_r/2), A1 = 0.068. At the base, mode 1 carries
   // 8/π² = 81 % of the static stress, so the base stress oscillates by about 0.81·A1 = 0.055 plus
   // a little from higher modes: the characteristics solution gives 0.0567 of static. The modal sum
@@ -1012,8 +1013,8 @@ TEST(GravityColumnTest, RampLeavesTheQuotedOscillation) {
 }
 
 TEST(GravityColumnTest, DampedColumnSettlesToGeostatic) {
-  // μ = 20/s: validation.md quotes a peak of 1.42× static and convergence to 1.00. After 2 s the
-  // slowest mode has decayed by e^{−μt/2} = e^{−20} ≈ 2e-9, so σ_v is geostatic at every depth.
+  // μ = 20/s: the modal reference gives a peak of 1.42× static and convergence to 1.00. After 2 s
+  // the slowest mode has decayed by e^{−μt/2} = e^{−20} ≈ 2e-9, so σ_v is geostatic at every depth.
   const GravityColumn column = default_column(0.0, 20.0);
   for (double depth : {2.5, 5.0, 10.0}) {
     EXPECT_NEAR(gravity_column_vertical_stress(column, depth, 2.0, 200),
@@ -1082,7 +1083,7 @@ TEST(LimitLoadsTest, BearingCapacityMatchesPython) {
   const double cohesion = von_mises_plane_strain_cohesion(1e5);
   EXPECT_NEAR(prandtl_bearing_capacity(1.0), file.tables[0].value_of("Prandtl N_c"), 1e-5);
   EXPECT_NEAR(prandtl_bearing_capacity(cohesion), file.tables[0].value_of("Prandtl q_u"), 1.0);
-  EXPECT_NEAR(prandtl_bearing_capacity(cohesion) / 1e5, 2.968, 5e-4);  // validation.md: 2.968 Y
+  EXPECT_NEAR(prandtl_bearing_capacity(cohesion) / 1e5, 2.968, 5e-4);  // (2 + π)/√3 Y = 2.968 Y
   EXPECT_DOUBLE_EQ(prandtl_bearing_capacity(cohesion, 1e4),
                    prandtl_bearing_capacity(cohesion) + 1e4);
   const Table& table = file.tables[1];
@@ -1110,7 +1111,7 @@ TEST(LimitLoadsTest, BandAnglesMatchTheAcousticTensorScan) {
   }
   EXPECT_NEAR(plane_strain_first_yield_stress(1e5, 0.3),
               file.tables[1].value_of("first-yield axial stress"), 1.0);
-  EXPECT_NEAR(plane_strain_first_yield_stress(1.0, 0.3), 1.125, 5e-4);  // validation.md §4.4
+  EXPECT_NEAR(plane_strain_first_yield_stress(1.0, 0.3), 1.125, 5e-4);  // docs/theory.md §8.4
   const Table& friction = file.tables[2];
   for (std::size_t row = 0; row < friction.rows.size(); ++row) {
     const double phi = friction.number(row, 0);
@@ -1126,7 +1127,7 @@ TEST(LimitLoadsTest, UndrainedStripPorePressure) {
   ASSERT_EQ(file.tables.size(), 2u);
   // strip_undrained.py defaults: b = 1 m, E = 10 MPa, ν = 0.3, n = 0.3, K_f = 2.2 GPa.
   const double factor = strip_undrained_compressibility_factor(1e7, 0.3, 0.3, 2.2e9);
-  EXPECT_NEAR(factor, 0.9987, 5e-5);  // validation.md §6.4.4 and the script header 0.99869
+  EXPECT_NEAR(factor, 0.9987, 5e-5);  // docs/theory.md §8.10 and the script header 0.99869
   const Table& centre = file.tables[0];
   ASSERT_EQ(centre.rows.size(), 41u);
   for (std::size_t row = 1; row < centre.rows.size(); ++row) {  // z = 0 is the surface limit
@@ -1146,7 +1147,7 @@ TEST(LimitLoadsTest, UndrainedStripPorePressure) {
           << x << " " << z;
     }
   }
-  // validation.md §6.4.4 numbers (3 digits): centre line 0.705, 0.500, 0.295, 0.156 q at z/b =
+  // docs/theory.md §8.10 numbers (3 digits): centre line 0.705, 0.500, 0.295, 0.156 q at z/b =
   // 0.5, 1, 2, 4; 0.352 q at (b, b); q under the strip and q/2 at an edge on the surface.
   const double zs[] = {0.5, 1.0, 2.0, 4.0};
   const double ps[] = {0.705, 0.500, 0.295, 0.156};

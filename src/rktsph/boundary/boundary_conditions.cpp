@@ -6,13 +6,11 @@
 #include <cmath>
 #include <optional>
 
+#include "rktsph/core/axes.hpp"
+
 namespace rktsph {
 
 namespace {
-const char* axis_letter(int a) {
-  return a == 0 ? "x" : (a == 1 ? "y" : "z");
-}
-
 const std::vector<std::int32_t>& group_nodes(
     const std::map<std::string, std::vector<std::int32_t>>& groups,
     const BoundaryConditionSpec& condition) {

@@ -1,5 +1,5 @@
 // Boundary conditions on SPH nodes (docs/theory.md §5.1): imposed velocities, fixed nodes,
-// rollers / symmetry planes (mirror images, prototype R3), tractions, and the natural
+// rollers / symmetry planes (mirror images, docs/theory.md §4.5), tractions, and the natural
 // traction-free condition on every face that has no other condition.
 #pragma once
 
@@ -38,7 +38,7 @@ class BoundaryConditions {
   std::span<const std::uint8_t> mirror_axes() const { return mirror_axes_; }
 
   /// Bit a set: node's stress increments are projected so that sigma_aa is kept (a face with
-  /// normal along a whose normal velocity is not imposed; prototype R2).
+  /// normal along a whose normal velocity is not imposed; docs/theory.md eq. 5.1).
   std::uint8_t projected_axes(std::int32_t node) const { return projected_axes_[node]; }
 
   /// Outward normals of the faces a node lies on (lattice directions with no neighbour and no

@@ -80,13 +80,13 @@ struct BoundaryConditionSpec {
   std::array<std::optional<TimeFunction>, 3> traction;  ///< Traction: per component [Pa]
   std::optional<TimeFunction> pore_pressure;            ///< PorePressure [Pa]
   int axis = 0;        ///< Roller: axis of the normal (0 = x, 1 = y)
-  bool mirror = true;  ///< Roller: fold mirror images into the operators (prototype R3)
+  bool mirror = true;  ///< Roller: fold mirror images into the operators (docs/theory.md §4.5)
   SourceLocation where;
 };
 
 struct GravitySpec {
   Vec3 acceleration{};                                ///< [m/s^2], e.g. (0, -9.81)
-  TimeFunction factor = TimeFunction::constant(1.0);  ///< dimensionless ramp (Q14)
+  TimeFunction factor = TimeFunction::constant(1.0);  ///< dimensionless ramp (docs/theory.md §1.2)
   SourceLocation where;
 };
 
@@ -132,7 +132,7 @@ enum class StressUpdate {
 /// with wider stencils (where the velocity-only filter is unstable).
 enum class HourglassFields {
   Velocity,  ///< the velocity only: equilibrium stress states stay fixed points
-  All,       ///< every field (prototype R6); the total normal stress in the saturated model
+  All,       ///< every field (docs/theory.md §3.3); the total normal stress in the saturated model
 };
 
 /// epsilon of the cells' hourglass stiffness when the case does not set it (docs/theory.md §3.4):
@@ -142,14 +142,14 @@ inline constexpr double kDefaultViscoplasticHourglassStiffness = 0.05;
 
 struct NumericsSpec {
   KernelType kernel = KernelType::CubicSpline;
-  double h_over_dx = 0.75;          ///< prototype R1
+  double h_over_dx = 0.75;          ///< docs/theory.md §4.1
   int interpolation_order = 0;      ///< 0 = Shepard, 1 = (d+1) system
   double courant = 0.5;             ///< C in dt = C dx / c_p
   std::optional<double> time_step;  ///< fixed dt [s] overriding the Courant rule
-  bool frozen_flux_source = true;   ///< R5; false = additive coupling of the spec
+  bool frozen_flux_source = true;   ///< docs/theory.md §2.8; false = additive
   double rk_substep_factor = 0.5;   ///< m = ceil(tau * lambda_src / factor), docs/theory.md §2.1
   int rk_max_substeps = 1000;
-  bool hourglass_filter = true;  ///< R6, default on in 2D, ignored in 1D
+  bool hourglass_filter = true;  ///< docs/theory.md §3.3, default on in 2D, ignored in 1D
   double hourglass_kappa = 0.1;
   double hourglass_h_over_dx = 1.3;
   std::optional<HourglassFields> hourglass_fields;  ///< unset: from the stencil width
@@ -162,7 +162,7 @@ struct NumericsSpec {
   double hourglass_plastic_fraction = 0.0;
   /// epsilon_s of the strain hourglass stiffness (theory eq. 3.5), at most (1 - C^2)/C^2; 0 = off
   double strain_hourglass_stiffness = 0.0;
-  double artificial_viscosity = 0.0;  ///< alpha of R7, 0 = off
+  double artificial_viscosity = 0.0;  ///< alpha of docs/theory.md §2.7, 0 = off
   SourceLocation where;
 };
 

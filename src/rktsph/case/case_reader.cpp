@@ -651,7 +651,7 @@ void CaseReader::read_pore_fluid(const YamlNode& node) {
     fluid.biot_coefficient = to_number(*alpha, biot);
   }
   if (const YamlNode* beta = map.find("projection_beta")) {
-    // beta = 0 adds a spurious permeability of about dt/rho (prototype-vpw §2.2): not offered.
+    // beta = 0 adds a spurious permeability of about dt/rho (docs/theory.md §6.2): not offered.
     fluid.projection_beta = static_cast<double>(to_integer(*beta, 1, 1));
   }
   if (const YamlNode* preconditioner = map.find("preconditioner")) {

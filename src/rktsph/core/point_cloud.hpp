@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace rktsph {
@@ -36,5 +37,8 @@ struct PointCloud {
     return {position[0][i], position[1][i], position[2][i]};
   }
 };
+
+/// Point i and its position for messages: "x = 1.5 m" in 1D, "(x, y) = (1.5, 2) m" in 2D.
+std::string describe_point(const PointCloud& points, std::size_t i);
 
 }  // namespace rktsph

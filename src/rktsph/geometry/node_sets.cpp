@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "rktsph/core/axes.hpp"
+
 namespace rktsph {
 
 namespace {
@@ -83,7 +85,7 @@ void check_vertices_on_lattice(const GeometrySpec& geometry, int dimension, cons
       if (std::round(width / dx) >= 1.0) continue;  // (lround of an overflowing ratio is UB)
       throw InputError(shape.where, "geometry.shapes", fmt::format("{}", width),
                        fmt::format("the shape is {} m wide along {}, less than one spacing ({})",
-                                   width, a == 0 ? "x" : "y", dx),
+                                   width, axis_letter(a), dx),
                        "shapes at least one spacing wide along every axis");
     }
   }

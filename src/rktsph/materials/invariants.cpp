@@ -58,6 +58,17 @@ double equivalent_strain_rate(const SymmetricTensor& strain_rate) {
   return std::sqrt(2.0 / 3.0 * double_contraction(deviatoric, deviatoric));
 }
 
+double mean_pressure(const SymmetricTensor& stress) {
+  return -trace(stress) / 3.0;
+}
+
+double von_mises_stress(const SymmetricTensor& stress) {
+  // 1.5 x rounds as 3 (x/2) does (halving is exact), so this equals sqrt(3 J2) of
+  // stress_invariants to the last bit.
+  const SymmetricTensor s = deviator(stress);
+  return std::sqrt(1.5 * double_contraction(s, s));
+}
+
 StressInvariants stress_invariants(const SymmetricTensor& stress) {
   StressInvariants result;
   result.i1 = trace(stress);
@@ -71,7 +82,7 @@ StressInvariants stress_invariants(const SymmetricTensor& stress) {
     largest_component = std::max(largest_component, std::abs(component));
   result.lode_defined = std::sqrt(result.j2) > kLodeDefinedRatio * largest_component;
   if (result.lode_defined) {
-    // Zienkiewicz–Pande sign (spec eq. 2.27, Q6): J3 < 0 in triaxial compression gives +pi/6.
+    // Zienkiewicz–Pande sign (docs/theory.md eq. 1.6): J3 < 0 in triaxial compression gives +pi/6.
     const double sin_3theta =
         -1.5 * std::sqrt(3.0) * result.j3 / (result.j2 * std::sqrt(result.j2));
     result.sin_3theta = std::clamp(sin_3theta, -1.0, 1.0);

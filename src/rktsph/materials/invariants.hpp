@@ -1,5 +1,5 @@
 // Stress invariants in the Zienkiewicz–Pande set (I1, J2, theta) and the pieces of the flow vector
-// m = C1 m1 + C2 m2 + C3 m3 (docs/theory.md §1.3; spec algorithm.md §1.3, eqs. 2.27, 2.45–2.48).
+// m = C1 m1 + C2 m2 + C3 m3 (docs/theory.md §1.3, eqs. 1.6–1.7).
 //
 // All tensors are full 3D symmetric tensors in the order (xx, yy, zz, xy, yz, zx) with tensor (not
 // engineering) shear components; a double contraction therefore counts each shear component twice.
@@ -21,8 +21,13 @@ double determinant(const SymmetricTensor& tensor);
 /// Isotropic Hooke's law D^e : strain = lambda tr(strain) I + 2 G strain.
 SymmetricTensor apply_elastic_stiffness(const ElasticConstants& elastic,
                                         const SymmetricTensor& strain);
-/// Equivalent (deviatoric) strain rate sqrt(2/3 e:e), e = dev(strain_rate) (spec Q19).
+/// Equivalent (deviatoric) strain rate sqrt(2/3 e:e), e = dev(strain_rate) (docs/theory.md §1.3).
 double equivalent_strain_rate(const SymmetricTensor& strain_rate);
+
+/// p = -tr(stress)/3, positive in compression.
+double mean_pressure(const SymmetricTensor& stress);
+/// q = sqrt(3 J2) = sqrt(3/2 s:s), the Von Mises equivalent stress (equal to StressInvariants::q).
+double von_mises_stress(const SymmetricTensor& stress);
 
 struct StressInvariants {
   SymmetricTensor deviator{};  // s = stress - (I1/3) I
@@ -44,7 +49,7 @@ inline constexpr double kLodeDefinedRatio = 1e-10;
 
 StressInvariants stress_invariants(const SymmetricTensor& stress);
 
-/// Coefficients of m = C1 m1 + C2 m2 + C3 m3 (spec §1.3): C1 = dg/dI1,
+/// Coefficients of m = C1 m1 + C2 m2 + C3 m3 (docs/theory.md eq. 1.7): C1 = dg/dI1,
 /// C2 = dg/dsqrtJ2 - (tan 3theta / sqrtJ2) dg/dtheta, C3 = -sqrt3 / (2 cos 3theta) J2^(-3/2)
 /// dg/dtheta.
 struct FlowCoefficients {

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "rktsph/materials/linear_elastic.hpp"
+#include "rktsph/materials/perzyna_overstress.hpp"
 
 namespace rktsph {
 
@@ -57,14 +58,6 @@ double PerzynaModifiedCamClay::yield_function(const StressInvariants& invariants
   return invariants.q * invariants.q + ratio * ratio * p * (p - preconsolidation_pressure);
 }
 
-namespace {
-/// <x>^N with the Macaulay bracket applied first (spec §1.3).
-double macaulay_power(double x, double exponent) {
-  if (x <= 0.0) return 0.0;
-  return exponent == 1.0 ? x : std::pow(x, exponent);
-}
-}  // namespace
-
 double PerzynaModifiedCamClay::overstress(const SymmetricTensor& stress,
                                           std::span<const double> internal) const {
   const double pc = internal[kPreconsolidationPressure];
@@ -72,7 +65,7 @@ double PerzynaModifiedCamClay::overstress(const SymmetricTensor& stress,
                         parameters_.exponent);
 }
 
-// Why not the gradient of g = f / pc (seed eq. 2.58): its theta part is
+// Why not the gradient of g = f / pc (docs/theory.md eq. 1.8): its theta part is
 // (2 M p (p - pc) / pc) dM/dstress, and dM/dstress ~ 1/sqrt(J2) near the hydrostatic axis, so m
 // blows up there at any p other than 0 and pc, which a state crossing the axis (isotropic loading)
 // meets. The regular potential
@@ -80,9 +73,9 @@ double PerzynaModifiedCamClay::overstress(const SymmetricTensor& stress,
 // has dg'/dstress = (2q/M^2) dq + (2p - pc) dp - (2 q^2 / M^3) dM. Scaled by M^2 / pc (a positive
 // factor, so the direction of flow is unchanged) it gives
 //   m = [2q dq + M^2 (2p - pc) dp - (2 q^2 / M) dM] / pc.
-// The q and p terms are those of the seed's m. On the ellipse q^2 = -M^2 p (p - pc), so the M
-// term equals the seed's 2 M p (p - pc) / pc dM: the two vectors coincide where the flow starts.
-// Off the ellipse the M term is ~ q^2 / sqrt(J2) ~ sqrt(J2) and vanishes on the axis.
+// The q and p terms are those of the thesis's m. On the ellipse q^2 = -M^2 p (p - pc), so the M
+// term equals the thesis's 2 M p (p - pc) / pc dM (eq. 1.10): the two vectors coincide where the
+// flow starts. Off the ellipse the M term is ~ q^2 / sqrt(J2) ~ sqrt(J2) and vanishes on the axis.
 FlowCoefficients PerzynaModifiedCamClay::flow_coefficients(const StressInvariants& invariants,
                                                            double preconsolidation_pressure) const {
   const double pc = preconsolidation_pressure;
@@ -97,7 +90,7 @@ FlowCoefficients PerzynaModifiedCamClay::flow_coefficients(const StressInvariant
   if (!invariants.lode_defined) return c;
   // The theta term is -(2 q^2 / (M pc)) dM/dtheta dtheta/dstress with
   // dM/dtheta = 18 sin^2(phi) cos 3theta / (3 - sin(phi) sin 3theta)^2. Its cos 3theta cancels the
-  // tan 3theta and 1/cos 3theta of C2 and C3 (seed eq. 2.65), so nothing is singular at +-30°.
+  // tan 3theta and 1/cos 3theta of C2 and C3 (eq. 1.9), so nothing is singular at +-30°.
   // theta_factor is (dg/dtheta) / (2 cos 3theta) in the notation of invariants.hpp.
   const double denominator = 3.0 - sin_friction_angle_ * invariants.sin_3theta;
   const double q_squared = 3.0 * invariants.j2;
@@ -133,7 +126,8 @@ void PerzynaModifiedCamClay::viscoplastic_rate(const SymmetricTensor& stress,
   for (int i = 0; i < 6; ++i)
     strain_rate[i] = flow_magnitude * direction[i];
   internal_rate[kEquivalentStrain] = equivalent_strain_rate(strain_rate);
-  // Seed eq. 2.54 with compression-positive volumetric strain, turned to tension positive.
+  // The thesis's law with compression-positive volumetric strain, turned to tension positive
+  // (docs/theory.md §1.5).
   internal_rate[kPreconsolidationPressure] = -hardening_factor() * pc * trace(strain_rate);
 }
 

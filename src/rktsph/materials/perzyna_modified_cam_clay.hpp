@@ -1,11 +1,11 @@
-// Perzyna viscoplasticity with the Modified Cam-Clay ellipse (docs/theory.md §1.3, §1.5; spec
-// algorithm.md §1.5 and Q5):
+// Perzyna viscoplasticity with the Modified Cam-Clay ellipse (docs/theory.md §1.3, §1.5,
+// eqs. 1.8–1.10):
 //
 //   f = q^2 + M(theta)^2 p (p - pc),  M(theta) = 6 sin(phi) / (3 - sin(phi) sin 3theta),
-//   Psi = <f / pc^2>^N  (zero exactly on the ellipse, Q5),
+//   Psi = <f / pc^2>^N  (zero exactly on the ellipse, docs/theory.md §1.5),
 //   eps_vp_rate = fluidity Psi m,  m = (M^2 / pc) dg'/dstress with g' = q^2 / M^2 + p (p - pc)
-//   (M held fixed in the scaling). m equals the seed's associated dg/dstress, g = f / pc
-//   (eq. 2.58), on the ellipse, and unlike it stays bounded near the hydrostatic axis (see the
+//   (M held fixed in the scaling). m equals the thesis's associated dg/dstress, g = f / pc
+//   (eq. 1.8), on the ellipse, and unlike it stays bounded near the hydrostatic axis (see the
 //   .cpp), pc_rate = -((1 + e0) / (lambda_c - kappa_c)) pc tr(eps_vp_rate)  (tension-positive
 //   strain).
 //
@@ -54,7 +54,8 @@ class PerzynaModifiedCamClay final : public Material {
                           std::span<const double> internal) const override;
 
   const PerzynaModifiedCamClayParameters& parameters() const { return parameters_; }
-  /// M(theta) from sin 3theta (spec §1.5); 6 sin(phi)/(3 - sin(phi)) in triaxial compression.
+  /// M(theta) from sin 3theta (docs/theory.md §1.5); 6 sin(phi)/(3 - sin(phi)) in triaxial
+  /// compression.
   double critical_state_ratio(double sin_3theta) const;
   /// f = q^2 + M^2 p (p - pc) [Pa^2]: < 0 inside the ellipse, 0 on it.
   double yield_function(const StressInvariants& invariants, double preconsolidation_pressure) const;
@@ -63,7 +64,7 @@ class PerzynaModifiedCamClay final : public Material {
   bool flows(const SymmetricTensor& stress, std::span<const double> internal) const override {
     return overstress(stress, internal) > 0.0;
   }
-  /// C1, C2, C3 of m (spec §1.5, seed eq. 2.65, with the regular potential above). The theta
+  /// C1, C2, C3 of m (docs/theory.md eqs. 1.9–1.10, with the regular potential above). The theta
   /// terms, which vanish like sqrt(J2) on the hydrostatic axis, are dropped where the
   /// Lode angle is undefined (StressInvariants::lode_defined).
   FlowCoefficients flow_coefficients(const StressInvariants& invariants,

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "rktsph/materials/linear_elastic.hpp"
+#include "rktsph/materials/perzyna_overstress.hpp"
 
 namespace rktsph {
 
@@ -39,23 +40,10 @@ double PerzynaVonMises::effective_yield_stress(std::span<const double> internal)
   return std::max(internal[kYieldStress], parameters_.minimum_yield_stress);
 }
 
-namespace {
-/// <x>^N with the Macaulay bracket applied first (spec §1.3).
-double macaulay_power(double x, double exponent) {
-  if (x <= 0.0) return 0.0;
-  return exponent == 1.0 ? x : std::pow(x, exponent);
-}
-
-double von_mises_q(const SymmetricTensor& stress) {
-  const SymmetricTensor s = deviator(stress);
-  return std::sqrt(1.5 * double_contraction(s, s));
-}
-}  // namespace
-
 double PerzynaVonMises::overstress(const SymmetricTensor& stress,
                                    std::span<const double> internal) const {
   const double yield = effective_yield_stress(internal);
-  return macaulay_power((von_mises_q(stress) - yield) / yield, parameters_.exponent);
+  return macaulay_power((von_mises_stress(stress) - yield) / yield, parameters_.exponent);
 }
 
 FlowCoefficients PerzynaVonMises::flow_coefficients() {
@@ -81,7 +69,8 @@ void PerzynaVonMises::viscoplastic_rate(const SymmetricTensor& stress,
   const SymmetricTensor direction = flow_direction(stress);
   for (int i = 0; i < 6; ++i)
     strain_rate[i] = flow_magnitude * direction[i];
-  // With m = (3/2) s/q, sqrt(2/3 m:m) = 1, so the equivalent rate is gamma Psi (spec §1.4).
+  // With m = (3/2) s/q, sqrt(2/3 m:m) = 1, so the equivalent rate is gamma Psi (docs/theory.md
+  // §1.4).
   internal_rate[kEquivalentStrain] = flow_magnitude;
   const bool at_softening_floor = parameters_.hardening_modulus < 0.0 &&
                                   internal[kYieldStress] <= parameters_.minimum_yield_stress;
@@ -93,11 +82,11 @@ double PerzynaVonMises::source_stiffness(const SymmetricTensor& stress,
                                          std::span<const double> internal) const {
   // The overstress q - Y relaxes as -(3G + H) gamma Psi (m:D:m = 3G, Y_rate = H gamma Psi), whose
   // derivative with respect to q is (3G + H) gamma N x^(N-1) / Y with x = (q - Y)/Y = Psi^(1/N).
-  // Spec §2.1 keeps 3G only; hardening (H > 0) stiffens the source, so it is added, while
-  // softening is left out to keep the estimate an upper bound.
+  // The first proposal kept 3G only; hardening (H > 0) stiffens the source, so it is added, while
+  // softening is left out to keep the estimate an upper bound (docs/theory.md eq. 2.7).
   const double yield = effective_yield_stress(internal);
   const double relative_overstress =
-      std::max((von_mises_q(stress) - yield) / yield, kOverstressFloor);
+      std::max((von_mises_stress(stress) - yield) / yield, kOverstressFloor);
   const double exponent = parameters_.exponent;
   const double slope =
       exponent == 1.0 ? 1.0 : exponent * std::pow(relative_overstress, exponent - 1.0);

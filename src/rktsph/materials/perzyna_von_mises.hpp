@@ -1,5 +1,5 @@
 // Perzyna viscoplasticity with a Von Mises function and linear hardening or softening of the yield
-// stress (docs/theory.md §1.3–1.4; spec algorithm.md §1.3, §1.4, §2.1, Q19):
+// stress (docs/theory.md §1.3–1.4, §2.8):
 //
 //   eps_vp_rate = fluidity <Psi> m,  Psi = <(q - Y) / Y>^N,  m = (3/2) s / q,
 //   Y_rate = H eps_eq_rate,  eps_eq_rate = sqrt(2/3 e_vp_rate : e_vp_rate) = fluidity Psi.
@@ -40,8 +40,8 @@ class PerzynaVonMises final : public Material {
   void viscoplastic_rate(const SymmetricTensor& stress, std::span<const double> internal,
                          SymmetricTensor& strain_rate,
                          std::span<double> internal_rate) const override;
-  /// (3 G + max(H, 0)) gamma N Psi^((N-1)/N) / Y (spec §2.1), with Psi^(1/N) = (q - Y)/Y floored at
-  /// kOverstressFloor so that N < 1 gives a finite rate as Psi -> 0.
+  /// (3 G + max(H, 0)) gamma N Psi^((N-1)/N) / Y (docs/theory.md eq. 2.7), with Psi^(1/N) = (q -
+  /// Y)/Y floored at kOverstressFloor so that N < 1 gives a finite rate as Psi -> 0.
   double source_stiffness(const SymmetricTensor& stress,
                           std::span<const double> internal) const override;
 
@@ -53,7 +53,7 @@ class PerzynaVonMises final : public Material {
   bool flows(const SymmetricTensor& stress, std::span<const double> internal) const override {
     return overstress(stress, internal) > 0.0;
   }
-  /// g = F = q: C1 = 0, C2 = sqrt3, C3 = 0 (spec §1.4).
+  /// g = F = q: C1 = 0, C2 = sqrt3, C3 = 0 (docs/theory.md §1.4).
   static FlowCoefficients flow_coefficients();
   /// m = dq/dstress = (3/2) s / q; zero at q = 0.
   static SymmetricTensor flow_direction(const SymmetricTensor& stress);

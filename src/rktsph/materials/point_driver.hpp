@@ -3,7 +3,7 @@
 //
 //   stress_rate = D^e : (strain_rate - eps_vp_rate(stress, internal)),  internal_rate = rates,
 //
-// integrated with classical RK4 over sub-steps chosen by the rule of spec §2.1,
+// integrated with classical RK4 over sub-steps chosen by the rule of docs/theory.md eq. 2.7,
 // m = max(1, ceil(dt * source_stiffness / substep_factor)), capped at max_substeps.
 // Used by the material tests and by validation of constitutive behaviour without SPH.
 #pragma once
@@ -46,7 +46,7 @@ struct PointState {
 
 struct DriveOptions {
   double time_step = 0.0;       // [s], > 0; the last step is shortened to end at the duration
-  double substep_factor = 2.5;  // spec §2.1; smaller values give more accurate integration
+  double substep_factor = 2.5;  // eq. 2.7 (§2.8); smaller values give more accurate integration
   int max_substeps = 1000;
   int record_every = 1;  // keep every n-th step (the first and last are always kept)
 };

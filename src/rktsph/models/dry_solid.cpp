@@ -1,4 +1,5 @@
 #include "rktsph/models/dry_solid.hpp"
+#include "rktsph/core/axes.hpp"
 #include "rktsph/core/parallel.hpp"
 
 #include <algorithm>
@@ -24,10 +25,6 @@ std::vector<StressComponent> carried_stress(Kinematics kinematics) {
       return {{0, 0}, {1, 1}, {0, 1}};
   }
   return {};
-}
-
-const char* axis_name(int a) {
-  return a == 0 ? "x" : (a == 1 ? "y" : "z");
 }
 
 // Index of a symmetric tensor component in SymmetricTensor order (xx, yy, zz, xy, yz, zx).
@@ -57,12 +54,12 @@ DrySolid::DrySolid(Kinematics kinematics, std::vector<std::unique_ptr<Material>>
       integration_(integration) {
   const int d = dimension();
   for (int a = 0; a < d; ++a) {
-    names_.push_back(std::string("velocity_") + axis_name(a));
+    names_.push_back(std::string("velocity_") + axis_letter(a));
     parities_.push_back(vector_parity(a));
   }
   for (const StressComponent& c : carried_stress(kinematics_)) {
     stress_slot_[names_.size() - static_cast<std::size_t>(d)] = tensor_slot(c.i, c.j);
-    names_.push_back(std::string("stress_") + axis_name(c.i) + axis_name(c.j));
+    names_.push_back(std::string("stress_") + axis_letter(c.i) + axis_letter(c.j));
     parities_.push_back(tensor_parity(c.i, c.j));
   }
   stress_count_ = static_cast<int>(names_.size()) - d;
@@ -117,7 +114,7 @@ void DrySolid::flux_rate(std::span<const std::int32_t> material, const FieldArra
                          FieldArray& rate) const {
   const auto n = static_cast<std::int64_t>(material.size());
   const int d = dimension();
-  // Gradient of field f along axis c is gradient field f * d + c (docs/theory.md eq. 2.3).
+  // Gradient of field f along axis c is gradient field f * d + c (docs/theory.md §2.2).
   auto grad = [&](int f, int c, std::int64_t i) { return gradient.field(f * d + c)[i]; };
   switch (kinematics_) {
     case Kinematics::Bar1D:

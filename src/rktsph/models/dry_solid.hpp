@@ -17,7 +17,7 @@ namespace rktsph {
 
 enum class Kinematics { Bar1D, PlaneStrain, PlaneStress };
 
-/// Body force and mass damping, evaluated in time (docs/theory.md §2.1, Q13, Q14).
+/// Body force and mass damping, evaluated in time (docs/theory.md §1.2, eq. 1.1).
 struct Loads {
   Vec3 gravity{};
   TimeFunction gravity_factor = TimeFunction::constant(1.0);
@@ -30,13 +30,14 @@ struct Loads {
 };
 
 struct SourceIntegration {
-  // m = ceil(interval * stiffness / factor). 0.5 rather than the spec's 2.5: with larger steps the
-  // RK4 stages jump across the yield surface (the Macaulay switch) and the overstress undershoots
-  // (15 % per sub-step at lambda delta = 2.3, docs/theory.md §2.1).
+  // m = ceil(interval * stiffness / factor). 0.5 rather than the 2.5 of eq. 2.7: with larger steps
+  // the RK4 stages jump across the yield surface (the Macaulay switch) and the overstress
+  // undershoots (15 % per sub-step at lambda delta = 2.3, docs/theory.md §2.1).
   double substep_factor = 0.5;
   int max_substeps = 1000;
-  /// true: y' = R + S(y) with R frozen (prototype R5); false: the spec's additive split,
-  /// y = y0 + interval R + [integral of y' = S(y) from y0] (biased by xi dt/2 with damping).
+  /// true: y' = R + S(y) with R frozen (docs/theory.md §2.8); false: the additive split,
+  /// y = y0 + interval R + [integral of y' = S(y) from y0] (biased by xi dt/2 with damping,
+  /// eq. 2.6).
   bool frozen_flux = true;
 };
 

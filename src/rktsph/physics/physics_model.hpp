@@ -2,7 +2,7 @@
 //
 // A physics model says which fields it carries (and their mirror parities), turns gradients into
 // the flux rate R(grad Phi), and advances values over a time interval with the flux rate frozen
-// (y' = R + S(y, kappa, t), prototype finding R5). V1 (dry solid), V2 (dry solid with Jaumann
+// (y' = R + S(y, kappa, t), docs/theory.md §2.8). V1 (dry solid), V2 (dry solid with Jaumann
 // terms and moving nodes) and V3 (saturated, plus a pressure projection) differ only here.
 #pragma once
 
@@ -102,8 +102,8 @@ class PhysicsModel {
                                                std::span<const double> start, FieldArray& values,
                                                std::size_t i) const = 0;
 
-  /// Adds the artificial viscous stress q = alpha rho c_p dx sym(grad v) (prototype R7) to the
-  /// half-step stresses of points [0, material.size()), which feed only the momentum corrector.
+  /// Adds the artificial viscous stress q = alpha rho c_p dx sym(grad v) (docs/theory.md §2.7) to
+  /// the half-step stresses of points [0, material.size()), which feed only the momentum corrector.
   virtual void add_artificial_viscosity(std::span<const std::int32_t> material,
                                         const FieldArray& gradient, double alpha_dx,
                                         FieldArray& values) const = 0;

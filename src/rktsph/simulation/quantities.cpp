@@ -3,25 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rktsph/core/axes.hpp"
+#include "rktsph/materials/invariants.hpp"
+
 namespace rktsph {
-
-namespace {
-const char* axis_letter(int a) {
-  return a == 0 ? "x" : (a == 1 ? "y" : "z");
-}
-
-double pressure(const SymmetricTensor& s) {
-  return -(s[0] + s[1] + s[2]) / 3.0;
-}
-
-double deviatoric_stress(const SymmetricTensor& s) {
-  const double mean = (s[0] + s[1] + s[2]) / 3.0;
-  const double dxx = s[0] - mean, dyy = s[1] - mean, dzz = s[2] - mean;
-  const double j2 =
-      0.5 * (dxx * dxx + dyy * dyy + dzz * dzz) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
-  return std::sqrt(3.0 * j2);
-}
-}  // namespace
 
 NodeQuantity find_quantity(const Simulation& simulation, const std::string& name) {
   const PhysicsModel& model = simulation.model();
@@ -53,11 +38,11 @@ NodeQuantity find_quantity(const Simulation& simulation, const std::string& name
     }
   if (name == "pressure")
     return [&model](const State& s, std::size_t i) {
-      return pressure(model.stress_tensor(s.fields, i));
+      return mean_pressure(model.stress_tensor(s.fields, i));
     };
   if (name == "deviatoric_stress")
     return [&model](const State& s, std::size_t i) {
-      return deviatoric_stress(model.stress_tensor(s.fields, i));
+      return von_mises_stress(model.stress_tensor(s.fields, i));
     };
   return {};
 }

@@ -14,7 +14,7 @@ constexpr double kPi = std::numbers::pi;
 /// Integral of exp(-|x|^2) / pi^(d/2) over the ball |x| < 3 in d dimensions: the share of the
 /// full Gaussian's unit mass that survives the truncation at q = 3. Closed forms (radial integrals
 /// of e^{-q^2} q^{d-1}): 1D erf(3); 2D 1 - e^{-9}; 3D erf(3) - (6/sqrt(pi)) e^{-9}. Dividing by it
-/// makes the truncated kernel integrate to exactly 1 (spec §4.1).
+/// makes the truncated kernel integrate to exactly 1 (docs/theory.md §4.1).
 double truncated_gaussian_mass(int dimension) {
   constexpr double kCutoff = 3.0;
   const double tail = std::exp(-kCutoff * kCutoff);
@@ -40,7 +40,7 @@ Kernel::Kernel(KernelType type, int dimension)
 }
 
 double Kernel::normalisation_for(KernelType type, int dimension) {
-  // Constants of spec §4.1 with the 1/h^d factored out.
+  // Constants of docs/theory.md eq. 4.5 with the 1/h^d factored out.
   const int index = dimension - 1;
   switch (type) {
     case KernelType::CubicSpline: {

@@ -1,4 +1,4 @@
-// Radial smoothing kernels W(r, h) of the SPH approximations (spec/algorithm.md §4.1).
+// Radial smoothing kernels W(r, h) of the SPH approximations (docs/theory.md §4.1, eq. 4.5).
 //
 // Kernel is a small value type: the kernel family is a switch inside inline functions, so the
 // hot loops of the operators pay no virtual call and the compiler can hoist the switch.

@@ -1,11 +1,11 @@
-// The SPH Laplacian of the pore-pressure equation (docs/theory.md §6.2): Morris et al. (1997)
+// The SPH Laplacian of the pore-pressure equation (docs/theory.md §6.3): Morris et al. (1997)
 //   (L p)_I = c * sum_J 2 V_J (x_I - x_J).grad_I W_IJ / (r_IJ^2 + eta^2) (p_I - p_J),
 // eta = 0.1 h, with mirror images of J folded in (pore pressure is even under reflection), and a
-// consistency scale c chosen so that L(|x|^2) = 2d on a full interior stencil (prototype-vpw R1:
-// without it the operator is 21 % (1D) / 26 % (2D) too weak at h = 0.75 dx).
+// consistency scale c chosen so that L(|x|^2) = 2d on a full interior stencil (docs/theory.md §6.3,
+// §7.2: without it the operator is 21 % (1D) / 26 % (2D) too weak at h = 0.75 dx).
 //
 // The matrix returned is the symmetric Ltilde = diag(V_eff) L, negative semi-definite, where
-// V_eff is the node volume halved once per mirror plane the node lies on (prototype-vpw R2: the
+// V_eff is the node volume halved once per mirror plane the node lies on (docs/theory.md §7.2: the
 // node on the plane stands for both halves of the mirrored domain; without the halving Ltilde is
 // not symmetric and conjugate gradients fail).
 #pragma once

@@ -1,5 +1,5 @@
-// Fixed-radius neighbour search with cell-linked lists (spec/algorithm.md §3.2, "linked-list
-// NNPS") and compressed-row neighbour tables for the SPH operators.
+// Fixed-radius neighbour search with cell-linked lists (docs/theory.md §4.6)
+// and compressed-row neighbour tables for the SPH operators.
 #pragma once
 
 #include <array>

@@ -4,8 +4,8 @@
 //   interpolation   f_a       = sum_k interpolation[k] * s_k * f[source[k]]
 //   gradient        df_a/dx_c = sum_k gradient[c][k]   * s_k * f[source[k]]
 // where s_k = +1 or -1 is the parity of the field under the mirror reflections the entry went
-// through (reflection[k], one bit per axis whose mirror plane reflected the source; prototype
-// finding R3). Entries are kept per (source, reflection), never merged, so that a field's parity
+// through (reflection[k], one bit per axis whose mirror plane reflected the source; docs/theory.md
+// §4.5). Entries are kept per (source, reflection), never merged, so that a field's parity
 // can be applied at use time: one table serves even and odd fields alike.
 #pragma once
 

@@ -64,9 +64,9 @@ HourglassStiffness build_hourglass_stiffness(const NodeSets& nodes, const Physic
       const std::int32_t node = nodes.node_at(corner);
       if (node < 0)
         throw RunError(
-            fmt::format("the cell of the stress point at ({:.6g}, {:.6g}) m lacks a "
-                        "corner node, so its hourglass mode cannot be controlled",
-                        nodes.stress_points.position[0][p], nodes.stress_points.position[1][p]));
+            fmt::format("the cell of the stress point at {} lacks a corner node, so its "
+                        "hourglass mode cannot be controlled",
+                        describe_point(nodes.stress_points, p)));
       control.corners[p][a] = node;
       x[a] = nodes.sph_nodes.position[0][node];
       y[a] = nodes.sph_nodes.position[1][node];

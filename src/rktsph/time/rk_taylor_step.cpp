@@ -191,7 +191,7 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
 
 void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
   // Step 1b: boundary nodes advance half a step with the collocated gradient; their half-step
-  // values join the stress points as sources of step 2 (spec §2.2, finding in §2.6).
+  // values join the stress points as sources of step 2 (docs/theory.md §2.2, §7.3).
   const auto& boundary = operators_.boundary_nodes;
   const int nf = model_.field_count();
   for (std::size_t r = 0; r < boundary.size(); ++r) {

@@ -33,7 +33,7 @@
 namespace rktsph {
 
 /// A correction applied after the RK-TSPH pass and its boundary conditions, before the step ends
-/// (the pressure projection of the saturated model, docs/theory.md §6.1). `time` is t^{n+1}.
+/// (the pressure projection of the saturated model, docs/theory.md §6.2). `time` is t^{n+1}.
 class StepProjection {
  public:
   virtual ~StepProjection() = default;

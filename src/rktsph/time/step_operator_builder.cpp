@@ -21,11 +21,6 @@ void drop_last_row(WeightTable& table) {
     g.resize(size);
 }
 
-std::string describe_point(const PointCloud& points, std::size_t i) {
-  if (points.dimension == 1) return fmt::format("x = {:.6g} m", points.position[0][i]);
-  return fmt::format("(x, y) = ({:.6g}, {:.6g}) m", points.position[0][i], points.position[1][i]);
-}
-
 // A node whose cells do not all carry a stress point is a boundary node and gets the half-step of
 // step 1b, except at a re-entrant corner (2D, three cells of four, e.g. the toe of a cut): there
 // the three stress points surround the node, so the cross-set gradient is already linear-exact,
@@ -153,7 +148,7 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
       regular = append_row(table, x, stencil, options, GradientReference::Self, n_points + self);
       if (!regular) {
         // Rank-deficient compact stencil (e.g. a corner at h = 0.75 dx): add the half-step values
-        // of the neighbouring boundary nodes (docs/theory.md §5.1).
+        // of the neighbouring boundary nodes (docs/theory.md §4.2, §7.1).
         drop_last_row(table);
         gather_stencil(x, node_cells, options, self, stencil_);
         for (StencilSource s : stencil_)

@@ -1,5 +1,5 @@
 // Orientation of a shear band from a scalar field on scattered points (typically the equivalent
-// viscoplastic strain on the SPH nodes), for the localisation cases (validation.md §4.4, §6.4.5).
+// viscoplastic strain on the SPH nodes), for the localisation cases (docs/theory.md §8.4).
 //
 // Method. The points whose value is above a quantile of the field take part, weighted by their
 // excess over it. A Radon-type search over directions projects them on the normal of each

@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "rktsph/driver/run_case.hpp"
+#include "rktsph/validation/references/elastic_moduli.hpp"
+#include "rktsph/validation/references/terzaghi.hpp"
 
 namespace rktsph {
 
@@ -128,6 +130,24 @@ std::filesystem::path run_for_validation(const ValidationContext& context,
     throw RunError(fmt::format("run '{}' of {} did not complete: {}", label, description.name,
                                outcome.message));
   return directory;
+}
+
+SaturatedColumn read_saturated_column(const CaseDescription& description,
+                                      const std::string& folder) {
+  if (!description.pore_fluid) throw RunError("case " + folder + ": no pore_fluid");
+  SaturatedColumn column;
+  const ShapeSpec& rectangle = description.geometry.shapes.at(0);
+  column.x_min = rectangle.vertices.at(0)[0];
+  column.x_max = rectangle.vertices.at(1)[0];
+  column.base = rectangle.vertices.at(0)[1];
+  column.height = rectangle.vertices.at(1)[1] - column.base;
+  column.spacing = description.geometry.spacing;
+  column.oedometric_modulus =
+      references::oedometric_modulus(material_parameter(description, "soil", "young_modulus"),
+                                     material_parameter(description, "soil", "poisson_ratio"));
+  const PoreFluidSpec& fluid = *description.pore_fluid;
+  column.biot_modulus = references::biot_modulus(fluid.porosity, fluid.bulk_modulus);
+  return column;
 }
 
 double material_parameter(const CaseDescription& description, const std::string& material,

@@ -57,6 +57,21 @@ std::filesystem::path run_for_validation(const ValidationContext& context,
 double material_parameter(const CaseDescription& description, const std::string& material,
                           const std::string& key);
 
+/// The saturated column of the v-pw cases, read back from the case file so that a reference uses
+/// exactly its numbers: the first shape (a rectangle from vertex 0 to vertex 1), the material
+/// "soil" and the pore fluid.
+struct SaturatedColumn {
+  double base = 0.0, height = 0.0;  // y of the base, height of the column
+  double x_min = 0.0, x_max = 0.0;  // lateral extent
+  double spacing = 0.0;             // dx
+  double oedometric_modulus = 0.0;  // M = E (1 - nu) / ((1 + nu)(1 - 2 nu)) of the soil
+  double biot_modulus = 0.0;        // Q = K_w / n
+};
+
+/// RunError naming cases/<folder> if the case has no pore fluid.
+SaturatedColumn read_saturated_column(const CaseDescription& description,
+                                      const std::string& folder);
+
 /// Adds, for each of `rows` lattice rows at y0, y0 + spacing, ..., a group "<prefix><row>" (a box
 /// from x_min to x_max, +- spacing/4 in y) and a probe of the mean of `field` over it, named like
 /// the group. Returns the heights of the rows.

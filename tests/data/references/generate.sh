@@ -1,7 +1,8 @@
 #!/bin/sh
 # Regenerates the reference CSVs that tests/validation/references_test.cpp compares against.
-# Usage: sh tests/data/references/generate.sh /path/to/shared/reference
-# (the shared stdlib-only Python reference scripts; needs /usr/bin/python3).
+# Usage: sh tests/data/references/generate.sh SCRIPTS_DIR
+# (SCRIPTS_DIR holds the stdlib-only Python reference scripts the project started from, which are
+# not in the repository; needs /usr/bin/python3).
 set -e
 src=${1:?path to the shared reference scripts}
 out=$(cd "$(dirname "$0")" && pwd)

@@ -1,4 +1,4 @@
-// Thesis §4.2, validation.md §4.2: the 1D elastic bar at Courant 0.6 and 1.0 against the exact
+// Thesis §4.2 (docs/theory.md §8.2): the 1D elastic bar at Courant 0.6 and 1.0 against the exact
 // characteristics solution: a -Z V0 compression plateau at mid-bar from L/2c, unloading at 3L/2c,
 // a +Z V0 tension plateau from 5L/2c, period 4L/c, no growth.
 #include <fmt/format.h>
@@ -88,7 +88,7 @@ std::vector<CheckResult> validate_bar1d_elastic(const ValidationContext& context
                       probes.rms(stress, 0.0, period);
   }
   if (context.report) {
-    // Appendix A.1: the exact solution by characteristics, for the same ends and load.
+    // docs/theory.md §8.2: the exact solution by characteristics, for the same ends and load.
     const references::ElasticBar exact(length, young, density, references::BarEnd::free_end(),
                                        references::BarEnd::velocity([v0](double) { return -v0; }));
     const double end = periods * period;

@@ -1,4 +1,4 @@
-// Thesis §4.3, validation.md §4.3, algorithm.md §7 case 4.3: the 1D Perzyna Von Mises bar.
+// Thesis §4.3 (docs/theory.md §8.3): the 1D Perzyna Von Mises bar.
 //
 // Two measurements, both against references::viscoplastic_bar.hpp:
 // - front_decay_error: a sudden velocity with Z|V| = 2 Y0 sends a front of amplitude sigma0 = 2 Y0

@@ -1,6 +1,7 @@
-// BAR-WAVE-2D (../shared/bench/bar-wave-2d.md): a plane P-wave in a 2D lattice, run with the
-// artificial viscosity (prototype R7, alpha = 0.25) and without it. Exact solution: front at c_p,
-// sigma_xx = -rho c_p V0 behind it, v_y = 0 everywhere, tension +rho c_p V0 after the reflections.
+// BAR-WAVE-2D (docs/theory.md §8.11): a plane P-wave in a 2D lattice, run with the
+// artificial viscosity (docs/theory.md §2.7, alpha = 0.25) and without it. Exact solution: front at
+// c_p, sigma_xx = -rho c_p V0 behind it, v_y = 0 everywhere, tension +rho c_p V0 after the
+// reflections.
 #include <fmt/format.h>
 
 #include <cmath>

@@ -1,8 +1,8 @@
-// Spatial convergence order of the scheme on smooth elastic waves (algorithm.md §2: the Taylor
-// flux step is second order). A step front converges at low order whatever the scheme, and even
-// the sin^2 rise of the case files (harmonic velocity, C1 at t = 0: its second derivative jumps)
-// limits the measured order to 1.8 (1D, c T = 5 m: L2 errors 4.9e-2, 1.4e-2, 3.9e-3, 1.1e-3 on
-// 40 to 320 cells; the largest errors sit at the head of the train). So the check drives both
+// Spatial convergence order of the scheme on smooth elastic waves (docs/theory.md §2.2: the
+// Taylor flux step is second order). A step front converges at low order whatever the scheme, and
+// even the sin^2 rise of the case files (harmonic velocity, C1 at t = 0: its second derivative
+// jumps) limits the measured order to 1.8 (1D, c T = 5 m: L2 errors 4.9e-2, 1.4e-2, 3.9e-3, 1.1e-3
+// on 40 to 320 cells; the largest errors sit at the head of the train). So the check drives both
 // problems with one pulse V0 sin^4(pi t / T) on 0 < t < T (C3 at both ends), V0 and T being the
 // peak and the period of the case's harmonic, tabulated finely enough (kPulseSamples) that the
 // table's kinks are far below the finest level's error; the exact solution uses the same table.

@@ -1,4 +1,4 @@
-// Thesis §4.4 (validation.md §4.4, algorithm.md §7 4.4): strain localisation in a 1 m x 2 m
+// Thesis §4.4 (docs/theory.md §8.4): strain localisation in a 1 m x 2 m
 // plane-strain sample of softening Von Mises–Perzyna material, compressed by a top velocity, with
 // a weak zone in the bottom-left corner. Checks:
 //   shear_band_angle      acute angle between the band and the loading (vertical) axis, measured
@@ -7,9 +7,9 @@
 //   band_onset_time       first time the band strip (0.1 m either side of the 45° line from the
 //                         weak zone) carries a mean eps_vp of a tenth of the first-yield strain,
 //                         and five times the mean of the quiet upper part of the sample; reference
-//                         the spec's estimate: the quasi-static time at which the intact sample
-//                         first yields plus one transit of the P-wave from the top to the weak
-//                         zone.
+//                         the estimate of docs/theory.md §8.4: the quasi-static time at which the
+//                         intact sample first yields plus one transit of the P-wave from the top to
+//                         the weak zone.
 //   band_distance_to_weak_zone  distance of the fitted band line from the weak-zone centre: the
 //                         band must start from the imperfection, not from the loaded corners.
 #include <fmt/format.h>
@@ -159,14 +159,14 @@ std::vector<CheckResult> validate_sample2d_localization(const ValidationContext&
       context, description, context.quick ? "quick" : "full", measure_final_band);
   if (!band) throw RunError("sample2d-localization: the band was not measured");
 
-  // First yield of the intact, unconfined plane-strain sample (validation.md §4.4): axial stress
+  // First yield of the intact, unconfined plane-strain sample (docs/theory.md §8.4): axial stress
   // Y/sqrt(1 - nu + nu^2), axial strain that times (1 - nu^2)/E.
   const double young = material_parameter(description, "soil", "young_modulus");
   const double poisson = material_parameter(description, "soil", "poisson_ratio");
   const double yield = material_parameter(description, "soil", "yield_stress");
   const double first_yield_strain = references::plane_strain_first_yield_stress(yield, poisson) *
                                     (1.0 - poisson * poisson) / young;
-  // validation.md §4.4: onset ~ eps_y H / V + ramp / 2 + H / c_p. The first two terms are the
+  // docs/theory.md §8.4: onset ~ eps_y H / V + ramp / 2 + H / c_p. The first two terms are the
   // quasi-static time the top needs to impose the first-yield strain; the last is the transit of
   // the compression from the loaded top to the weak zone at the bottom.
   const double density = material_parameter(description, "soil", "density");
@@ -185,7 +185,8 @@ std::vector<CheckResult> validate_sample2d_localization(const ValidationContext&
                         kOnsetStrainFraction * first_yield_strain,
                         distance_to_band(band->primary, kWeakZoneCentreX, kWeakZoneCentreY));
   return {
-      // ±3°: validation.md §4.4 (first-yield tilt of 1.6° for nu = 0.3 plus lattice quantisation).
+      // ±3°: docs/theory.md eq. 8.2 (first-yield tilt of 1.6° for nu = 0.3 plus lattice
+      // quantisation).
       check_within("shear_band_angle", band->primary.angle_deg,
                    references::j2_plane_strain_band_angle_deg(), 3.0, "deg"),
       // The window: the weak zone (0.9 Y0) yields 10 % of the loading earlier than the intact

@@ -1,7 +1,7 @@
-// Thesis §4.5.1, validation.md §4.5.1: elastic block with a vertical free face under gravity
+// Thesis §4.5.1 (docs/theory.md §8.5): elastic block with a vertical free face under gravity
 // ramped over 0.5 s with mass damping (20/s), run to 2 s. References: far from the face the
 // vertical stress is the overburden rho g depth; where lateral strain is prevented the horizontal
-// stress is K0 = nu/(1 - nu) of it (gravity_column reference, validation.md §4.5.1); a damped
+// stress is K0 = nu/(1 - nu) of it (gravity_column reference, docs/theory.md §8.5); a damped
 // elastic body must come to rest.
 #include <fmt/format.h>
 
@@ -137,7 +137,7 @@ std::vector<CheckResult> validate_slope_elastic(const ValidationContext& context
   const double residual = residual_velocity_ratio(speeds.history());
   if (context.report) report_slope(*context.report, directory, profiles, speeds.history());
   // The same tolerances at both resolutions: the static checks are met with a wide margin at
-  // dx = 1 m already (the prototype found the confined column exact to 1e-6 at h = 0.75 dx).
+  // dx = 1 m already (the confined column is exact to 1e-6 at h = 0.75 dx, docs/theory.md §7.1).
   return {
       check_at_most("vertical_stress_error", errors.vertical_stress, 0.0, 0.02, "fraction"),
       check_at_most("k0_error", errors.k0, 0.0, 0.03, "fraction"),

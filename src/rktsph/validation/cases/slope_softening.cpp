@@ -1,4 +1,4 @@
-// Thesis §4.5.3, validation.md §4.5.3: the vertical cut with a peak strength above critical
+// Thesis §4.5.3 (docs/theory.md §8.6): the vertical cut with a peak strength above critical
 // (N0 = 3.5) and linear softening towards a residual strength below it (N_res = 5.86). There is no
 // closed form for progressive failure; what must hold is that the cut fails (onset at the toe,
 // collapse unstoppable once gamma H / c_res > 3.83) and that stronger softening fails sooner.

@@ -1,4 +1,4 @@
-// Thesis §4.5.2, validation.md §4.5.2: critical stability number of a vertical cut in a Perzyna
+// Thesis §4.5.2 (docs/theory.md §8.6): critical stability number of a vertical cut in a Perzyna
 // Von Mises soil without hardening, found by bisection over runs, against Taylor's toe circle
 // N = gamma H sqrt(3) / Y = 3.83 (references/limit_loads.hpp).
 #include <fmt/format.h>
@@ -162,7 +162,7 @@ std::vector<CheckResult> validate_slope_viscoplastic(const ValidationContext& co
   }
   const double critical =
       bracket_holds ? 0.5 * (stable + failing) : std::numeric_limits<double>::quiet_NaN();
-  // validation.md §4.5.2: within 5 % of 3.83 (3.64-4.02). The quick lattice keeps the same band:
+  // docs/theory.md §8.6: within 5 % of 3.83 (3.64-4.02). The quick lattice keeps the same band:
   // its bracket is 0.1 wide, and a coarse lattice fails later, not earlier (less room for a band).
   const double reference = references::kTaylorVerticalCutStabilityNumber;
   if (context.report) report_bisection(*context.report, runs, critical, reference, end_time);

@@ -1,4 +1,4 @@
-// Thesis §6.4.2, validation.md §6.4.2: consolidation of a saturated column under a surface load,
+// Thesis §6.4.2 (docs/theory.md §8.8): consolidation of a saturated column under a surface load,
 // against the Terzaghi series with the Biot-consistent p0 = q Q/(M + Q) and
 // c_v = (k/gamma_w)/(1/M + 1/Q) (references/terzaghi.hpp).
 //
@@ -7,19 +7,21 @@
 // - degree_of_consolidation_error: |U - U(Tv)|, maximum over the same three Tv, with
 //   U = 1 - mean(p_w)/p0 the definition of the reference (mean over the column height by the
 //   trapezoidal rule over the rows; its own error is ~1e-4 at Tv = 0.1). Absolute: U is a fraction.
-// - settlement_error (extra, validation.md: 3 %): |s - s_ref| / s_ref, maximum over the three Tv,
+// - settlement_error (extra, 3 %, docs/theory.md §8.8): |s - s_ref| / s_ref, maximum over the three
+// Tv,
 //   s = -u_y of the top and s_ref = s_u + (s_inf - s_u) U(Tv). It reads the skeleton, not the
 //   pressure, so it is independent of the checks above.
-// - initial_pressure_error (extra, validation.md: 2 %): |p_w(base)/p0 - 1| at Tv = 0.01, after the
+// - initial_pressure_error (extra, 2 %, docs/theory.md §8.8): |p_w(base)/p0 - 1| at Tv = 0.01,
+// after the
 //   undrained wave (H/V_u ~ 5-16 ms) and before drainage reaches the base (Terzaghi: 1 - 1e-12).
 //
-// The load is ramped over 5 steps (prototype-vpw §5 item 4). By superposition a linear ramp over
+// The load is ramped over 5 steps (docs/theory.md §7.2, S5). By superposition a linear ramp over
 // tau equals a sudden load at tau/2 up to O(tau^2) (tau/2 is ~1e-3 Tv here), so the analytical
 // times are shifted by tau/2.
 //
 // Full variant: the thesis-like column, H = 30 m, 2 m wide, dx = 0.5 m, k = 6.6e-3 m/s, so
-// H^2/c_v = 99.6 s against H/c_p = 0.38 s (ratio 260 >= 50, prototype-vpw §5.6: below it the
-// inertia of the dynamic model makes p_w lag Terzaghi). Quick variant: the prototype's column,
+// H^2/c_v = 99.6 s against H/c_p = 0.38 s (ratio 260 >= 50, docs/theory.md §7.2, S6: below it the
+// inertia of the dynamic model makes p_w lag Terzaghi). Quick variant: the column of §7.2,
 // H = 10 m, k = 1e-2 m/s (H^2/c_v = 7.3 s, H/c_p = 0.13 s, ratio 57), dx = 0.25 m.
 #include <algorithm>
 #include <cmath>
@@ -43,14 +45,9 @@ namespace {
 constexpr const char* kFolder = "vpw-consolidation";
 
 /// The column of the case file, read back so that the reference uses exactly its numbers.
-struct ConsolidationSetup {
-  double base = 0.0, height = 0.0;  // y of the base, H
-  double x_min = 0.0, x_max = 0.0;  // lateral extent
-  double spacing = 0.0;             // dx
-  double load = 0.0;                // q > 0 (compression)
-  double ramp = 0.0;                // tau of the load ramp (0: sudden)
-  double oedometric_modulus = 0.0;  // M
-  double biot_modulus = 0.0;        // Q = K_w / n
+struct ConsolidationSetup : SaturatedColumn {  // height = H
+  double load = 0.0;                           // q > 0 (compression)
+  double ramp = 0.0;                           // tau of the load ramp (0: sudden)
   double consolidation_coefficient = 0.0;
   double initial_pressure = 0.0;  // p0
 
@@ -58,10 +55,6 @@ struct ConsolidationSetup {
     return time_factor * height * height / consolidation_coefficient + 0.5 * ramp;
   }
 };
-
-double material_value(const CaseDescription& description, const std::string& key) {
-  return material_parameter(description, "soil", key);
-}
 
 /// The traction on the top (group ymax): a ramp (or a constant) to -q.
 void read_load(const CaseDescription& description, ConsolidationSetup& setup) {
@@ -85,21 +78,12 @@ void read_load(const CaseDescription& description, ConsolidationSetup& setup) {
 }
 
 ConsolidationSetup read_setup(const CaseDescription& description) {
-  if (!description.pore_fluid) throw RunError(std::string("case ") + kFolder + ": no pore_fluid");
   ConsolidationSetup setup;
-  const ShapeSpec& rectangle = description.geometry.shapes.at(0);
-  setup.x_min = rectangle.vertices.at(0)[0];
-  setup.x_max = rectangle.vertices.at(1)[0];
-  setup.base = rectangle.vertices.at(0)[1];
-  setup.height = rectangle.vertices.at(1)[1] - setup.base;
-  setup.spacing = description.geometry.spacing;
+  static_cast<SaturatedColumn&>(setup) = read_saturated_column(description, kFolder);
   read_load(description, setup);
   const PoreFluidSpec& fluid = *description.pore_fluid;
   if (fluid.biot_coefficient != 1.0)
     throw RunError(std::string("case ") + kFolder + ": the Terzaghi reference needs alpha = 1");
-  setup.oedometric_modulus = references::oedometric_modulus(
-      material_value(description, "young_modulus"), material_value(description, "poisson_ratio"));
-  setup.biot_modulus = references::biot_modulus(fluid.porosity, fluid.bulk_modulus);
   setup.consolidation_coefficient = references::consolidation_coefficient(
       fluid.hydraulic_conductivity, fluid.density * fluid.gravity, setup.oedometric_modulus,
       setup.biot_modulus);
@@ -325,10 +309,10 @@ std::vector<CheckResult> validate_vpw_consolidation(const ValidationContext& con
   if (context.report)
     report_consolidation(*context.report, description, run_directory, probes, setup, heights,
                          time_factors);
-  // Tolerances: the 5 % of q on the isochrones (validation.md asks 0.03 p0; the measured
-  // values are far below both), U within 3 % (absolute), settlement within 3 % (validation.md;
-  // the settlement rings with the drained skeleton wave, period 4H/c_p, which the 5-step ramp
-  // keeps below ~1 % of s, prototype-vpw §2.1), p0 within 2 % (validation.md).
+  // Tolerances: the 5 % of q on the isochrones (docs/theory.md §8.8 asks 0.03 p0; the
+  // measured values are far below both), U within 3 % (absolute), settlement within 3 % (§8.8; the
+  // settlement rings with the drained skeleton wave, period 4H/c_p, which the 5-step ramp keeps
+  // below ~1 % of s, §7.2, S5), p0 within 2 % (§8.8).
   return {
       check_at_most("terzaghi_error_tv01", errors[0], 0.0, 0.05, "fraction"),
       check_at_most("terzaghi_error_tv03", errors[1], 0.0, 0.05, "fraction"),

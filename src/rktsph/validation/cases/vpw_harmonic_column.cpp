@@ -1,14 +1,15 @@
-// Thesis §6.4.3, validation.md §6.4.3 (Zienkiewicz, Chang & Bettess 1980): the steady-state
+// Thesis §6.4.3, docs/theory.md §8.9 (Zienkiewicz, Chang & Bettess 1980): the steady-state
 // pore-pressure amplitude of a saturated column under a harmonic total load on a drained top,
 // against the u-p analytical solution (references/harmonic_column.hpp) **without** the fluid
 // acceleration in Darcy's law (fluid_acceleration_in_darcy = false): the v-pw model neglects it
-// (algorithm.md §1.7, spec Q16), so that is the model being verified.
+// (docs/theory.md §6.1, §8.9), so that is the model being verified.
 //
 // One run per permeability, Pi1 = 0.1, 1 and 10 (Pi1 = k_bar (D + alpha^2 Q) / (omega L^2)), at
 // the case's frequency group Pi2 = (omega L / V_c)^2 = 1, below the undrained resonance
-// pi^2/4 = 2.47 (validation.md: avoid +-20 % of it). Checks amplitude_error_k1/k2/k3:
+// pi^2/4 = 2.47 (docs/theory.md §8.9: avoid +-20 % of it). Checks amplitude_error_k1/k2/k3:
 // max over the lattice rows (every depth, the drained boundary layer included) of
-// | |p_w|_fit - |P(z)| | / q0, i.e. relative to the load amplitude, as validation.md's 0.05 q0.
+// | |p_w|_fit - |P(z)| | / q0, i.e. relative to the load amplitude, as the 0.05 q0 of
+// docs/theory.md §8.9.
 //
 // The load: the case's harmonic traction with its amplitude ramped in by a half-cosine over the
 // first kRampPeriods periods (a table function, 128 points per period: its fundamental is
@@ -50,17 +51,14 @@ constexpr double kRampPeriods = 4.0;
 constexpr int kTableSamplesPerPeriod = 128;
 
 /// The column of the case file, read back so that the reference uses exactly its numbers.
-struct HarmonicSetup {
-  double base = 0.0, depth = 0.0;   // y of the base, L
-  double x_min = 0.0, x_max = 0.0;  // lateral extent
-  double spacing = 0.0;
-  double load = 0.0;    // q0 > 0
-  double period = 0.0;  // T
-  double constrained_modulus = 0.0, biot_modulus = 0.0, biot_coefficient = 1.0;
+struct HarmonicSetup : SaturatedColumn {  // height = L
+  double load = 0.0;                      // q0 > 0
+  double period = 0.0;                    // T
+  double biot_coefficient = 1.0;
   double density = 0.0, fluid_density = 0.0, gravity = 9.81;
 
   double angular_frequency() const { return 2.0 * std::numbers::pi / period; }
-  int rows() const { return static_cast<int>(std::lround(depth / spacing)) + 1; }
+  int rows() const { return static_cast<int>(std::lround(height / spacing)) + 1; }
 };
 
 double material_value(const CaseDescription& description, const std::string& key) {
@@ -77,23 +75,14 @@ TimeFunction& top_traction(CaseDescription& description) {
 }
 
 HarmonicSetup read_setup(CaseDescription& description) {
-  if (!description.pore_fluid) throw RunError(std::string("case ") + kFolder + ": no pore_fluid");
   HarmonicSetup setup;
-  const ShapeSpec& rectangle = description.geometry.shapes.at(0);
-  setup.x_min = rectangle.vertices.at(0)[0];
-  setup.x_max = rectangle.vertices.at(1)[0];
-  setup.base = rectangle.vertices.at(0)[1];
-  setup.depth = rectangle.vertices.at(1)[1] - setup.base;
-  setup.spacing = description.geometry.spacing;
+  static_cast<SaturatedColumn&>(setup) = read_saturated_column(description, kFolder);
   const TimeFunction& traction = top_traction(description);
   if (traction.offset != 0.0 || traction.start != 0.0)
     throw RunError(std::string("case ") + kFolder + ": the harmonic load needs offset = start = 0");
   setup.load = std::abs(traction.amplitude);
   setup.period = traction.period;
-  setup.constrained_modulus = references::oedometric_modulus(
-      material_value(description, "young_modulus"), material_value(description, "poisson_ratio"));
   const PoreFluidSpec& fluid = *description.pore_fluid;
-  setup.biot_modulus = references::biot_modulus(fluid.porosity, fluid.bulk_modulus);
   setup.biot_coefficient = fluid.biot_coefficient;
   setup.density = material_value(description, "density");
   setup.fluid_density = fluid.density;
@@ -103,18 +92,18 @@ HarmonicSetup read_setup(CaseDescription& description) {
 
 /// Hydraulic conductivity k [m/s] that gives the permeability group Pi1.
 double conductivity_for(const HarmonicSetup& setup, double permeability_group) {
-  const double stiffness = setup.constrained_modulus +
+  const double stiffness = setup.oedometric_modulus +
                            setup.biot_coefficient * setup.biot_coefficient * setup.biot_modulus;
   const double k_bar =
-      permeability_group * setup.angular_frequency() * setup.depth * setup.depth / stiffness;
+      permeability_group * setup.angular_frequency() * setup.height * setup.height / stiffness;
   return k_bar * setup.fluid_density * setup.gravity;
 }
 
 references::HarmonicColumn reference_column(const HarmonicSetup& setup,
                                             double hydraulic_conductivity) {
   references::HarmonicColumn column;
-  column.depth = setup.depth;
-  column.constrained_modulus = setup.constrained_modulus;
+  column.depth = setup.height;
+  column.constrained_modulus = setup.oedometric_modulus;
   column.biot_modulus = setup.biot_modulus;
   column.biot_coefficient = setup.biot_coefficient;
   column.mixture_density = setup.density;
@@ -122,7 +111,7 @@ references::HarmonicColumn reference_column(const HarmonicSetup& setup,
   column.permeability = hydraulic_conductivity / (setup.fluid_density * setup.gravity);
   column.angular_frequency = setup.angular_frequency();
   column.load_amplitude = setup.load;
-  column.fluid_acceleration_in_darcy = false;  // as the v-pw model (spec Q16)
+  column.fluid_acceleration_in_darcy = false;  // as the v-pw model (docs/theory.md §6.1)
   return column;
 }
 
@@ -213,7 +202,7 @@ AmplitudeProfile amplitude_error(const ValidationContext& context, const Harmoni
   const double last = probes.time().back();
   double error = 0.0;
   for (int row = 0; row < setup.rows(); ++row) {
-    const double depth = setup.depth - row * setup.spacing;
+    const double depth = setup.height - row * setup.spacing;
     const double amplitude =
         fitted_amplitude(probes, fmt::format("vpw_row_{}.pore_pressure", row),
                          setup.angular_frequency(), last - 2.0 * setup.period, last);
@@ -254,9 +243,9 @@ void report_harmonic_column(ValidationReport& report, const HarmonicSetup& setup
         reference_column(setup, profile.conductivity));
     Series exact{fmt::format("ZCB 1980, Pi1 = {:g}", groups[k]), {}, {}, "dashed"};
     for (int i = 0; i < kProfileSamples; ++i) {
-      const double depth = setup.depth * i / (kProfileSamples - 1);
+      const double depth = setup.height * i / (kProfileSamples - 1);
       exact.x.push_back(reference.pressure_ratio(depth));
-      exact.y.push_back(setup.base + setup.depth - depth);
+      exact.y.push_back(setup.base + setup.height - depth);
     }
     figure.series.push_back(std::move(measured));
     figure.series.push_back(std::move(exact));
@@ -272,7 +261,7 @@ void report_harmonic_column(ValidationReport& report, const HarmonicSetup& setup
       "the column drains within a period and |p_w| stays small; at Pi1 = 0.1 it is nearly "
       "undrained, the load is carried by the water and amplified by inertia towards the base, "
       "with a thin drained boundary layer under the top.",
-      setup.depth, setup.spacing, 1e-3 * setup.load, setup.period, kRampPeriods, periods));
+      setup.height, setup.spacing, 1e-3 * setup.load, setup.period, kRampPeriods, periods));
   report.add_figure(std::move(figure));
   const AmplitudeProfile& shown = profiles[profiles.size() / 2];
   report.add_picture({"pore_pressure_pi1_1", shown.run_directory.string(), "pore_pressure", -1,
@@ -300,7 +289,7 @@ std::vector<CheckResult> validate_vpw_harmonic_column(const ValidationContext& c
                                        fmt::format("pi1-{}", groups[k]),
                                        context.report ? setup.period / 8.0 : 0.0));
     const double error = profiles.back().error;
-    // 0.05 q0: validation.md §6.4.3, for Pi2 <= 1 away from resonance.
+    // 0.05 q0: docs/theory.md §8.9, for Pi2 <= 1 away from resonance.
     checks.push_back(
         check_at_most(fmt::format("amplitude_error_k{}", k + 1), error, 0.0, 0.05, "fraction"));
   }

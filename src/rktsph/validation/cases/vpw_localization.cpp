@@ -1,7 +1,7 @@
-// Thesis §6.4.5 (validation.md §6.4.5): strain localisation in a saturated sample. The sample,
-// material and loading of §4.4 (cases/sample2d-localization) with pore water, low permeability and
-// drained faces. Von Mises flow on the effective stress is isochoric, so the nearly undrained
-// sample localises like the dry one. Checks:
+// Thesis §6.4.5 (docs/theory.md §8.4): strain localisation in a saturated sample. The sample,
+// material and loading of thesis §4.4 (cases/sample2d-localization) with pore water, low
+// permeability and drained faces. Von Mises flow on the effective stress is isochoric, so the
+// nearly undrained sample localises like the dry one. Checks:
 //   shear_band_angle   acute angle between the band and the loading (vertical) axis, measured
 //                      from the eps_vp field at the end (validation/band_angle.hpp); 45° ± 3°.
 //   band_distance_to_weak_zone  the band must start from the imperfection (weak-zone

@@ -1,4 +1,4 @@
-// Thesis §6.4.4 (validation.md §6.4.4, algorithm.md §7 6.4.4): a flexible strip load applied
+// Thesis §6.4.4 (docs/theory.md §8.10): a flexible strip load applied
 // quickly to a nearly undrained elastic stratum; half model with the symmetry plane x = 0.
 // Checks, both on the last state (load held, shear ringing damped, t << b^2/c_v):
 //   centreline_pressure_error  max over z/b = 0.5, 1, 2 of |p_w/p0 - 1| on the centre line, with
@@ -57,7 +57,7 @@ double centre_line_value(const LatticeField& field, double depth) {
 // The (-1)^(i+j) component of p_w (checkerboard_amplitude, validation/rest_checks.hpp: the 3x3
 // stencil, which returns 0 on the drained-surface boundary layer that varies in y only). The
 // undrained field is singular at the footing edge itself, so nodes within max(b/2, 3 dx) of it are
-// left out (validation.md §6.4.4 excludes the same zone for p), and so are nodes without a full
+// left out (docs/theory.md §8.10 excludes the same zone for p), and so are nodes without a full
 // 3x3 neighbourhood.
 double pore_pressure_checkerboard(const LatticeField& field) {
   const double exclusion = std::max(0.5 * kHalfWidth, 3.0 * field.spacing);
@@ -210,7 +210,7 @@ std::vector<CheckResult> validate_vpw_strip_footing_elastic(const ValidationCont
                      speeds.history().speed.back(), residual)});
   }
   // 10 %: the box walls account for up to 1.8 %, the drained-surface boundary layer of the
-  // projection (one to two nodes, prototype-vpw-findings.md §3.1) reaches z = b/2 only at
+  // projection (one to two nodes, docs/theory.md §7.2, S7) reaches z = b/2 only at
   // b/dx = 4, and the nodal load edge is resolved to dx/2.
   // residual_velocity_ratio: a damped elastic body under a held load comes to rest (t << b^2/c_v:
   // no consolidation over the run); settlement_oddeven_ratio: the exact profile gives about 0.007

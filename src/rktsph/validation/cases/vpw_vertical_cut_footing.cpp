@@ -1,4 +1,4 @@
-// Thesis §6.4.6 (validation.md §6.4.6 and §5.3.6): a smooth rigid strip footing of width B flush
+// Thesis §6.4.6 (docs/theory.md §8.7): a smooth rigid strip footing of width B flush
 // with the crest of a vertical cut in saturated, weightless Von Mises–Perzyna soil (plasticity on
 // the effective stress), pushed down at a constant velocity with a low permeability (undrained).
 // Checks:
@@ -6,13 +6,13 @@
 //                         vertical stress under the footing (trapezoidal weights over its nodes,
 //                         from probes.csv) over the last fifth of the push (4 s <= t <= 5 s), and
 //                         c = Y/sqrt(3)
-//                         (validation.md §5.3.6: the uniaxial column under the footing and the 45°
+//                         (docs/theory.md §8.7: the uniaxial column under the footing and the 45°
 //                         wedge from its inner edge to the face both give 2c, drained or
 //                         undrained). The Perzyna overstress is kept below 1 %: V/(gamma B) = 0.004
-//                         (§0).
+//                         (docs/theory.md §8.1).
 //   shear_band_angle      the band of eps_vp at the end of the push, t = 5 s
 //                         (validation/band_angle.hpp), measured from the vertical: 45° ± 5°
-//                         (§5.3.6).
+//                         (docs/theory.md §8.7).
 //   contact_pressure_oddeven_ratio  the odd-even part of the node-by-node contact pressure
 //                         -sigma_yy (total) on the interior footing nodes over its mean
 //                         (rest_checks.hpp), the largest over the states at t = 4, 4.5 and 5 s (the
@@ -276,9 +276,9 @@ std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationConte
                      kHoldStart, speeds.history().speed.back(), residual)});
   }
 
-  // 10 % (5 % in validation.md for a converged dry run): the collapse load of a Perzyna material
-  // is within 1 % of 2c at this rate, the rest covers the footing edge resolved to dx/2 on B/dx = 8
-  // (quick) or 16 nodes and the undrained-limit approximation.
+  // 10 % (5 % in docs/theory.md §8.7 for a converged dry run): the collapse load of a Perzyna
+  // material is within 1 % of 2c at this rate, the rest covers the footing edge resolved to dx/2 on
+  // B/dx = 8 (quick) or 16 nodes and the undrained-limit approximation.
   // contact_pressure_oddeven_ratio 5 %: a rigid smooth footing at the limit load carries a smooth
   // pressure (2c under the column, the edges excepted, which have a single neighbour and are left
   // out); residual_velocity_ratio 1e-3 as slope-elastic.

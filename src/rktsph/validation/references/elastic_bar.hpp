@@ -1,5 +1,5 @@
-// Exact solution of the 1D linear elastic bar by characteristics (validation.md §4.2, §5.3.2;
-// algorithm.md Appendix A.1).
+// Exact solution of the 1D linear elastic bar by characteristics (docs/theory.md
+// §8.2).
 //
 //   ρ v_t = σ_x,  σ_t = E v_x  on 0 ≤ x ≤ L,  v = σ = 0 at t = 0,  tension positive.
 //

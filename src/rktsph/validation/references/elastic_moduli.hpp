@@ -4,7 +4,7 @@
 namespace rktsph::references {
 
 /// Constrained (oedometric, P-wave) modulus M = E(1-ν)/((1+ν)(1-2ν)): the stiffness of a
-/// laterally confined column (validation.md §4.5.1, §6.4.2).
+/// laterally confined column (docs/theory.md §8.5, §8.8).
 inline double oedometric_modulus(double young_modulus, double poisson_ratio) {
   return young_modulus * (1.0 - poisson_ratio) /
          ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio));

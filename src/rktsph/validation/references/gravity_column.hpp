@@ -1,5 +1,5 @@
 // Laterally confined elastic column under gravity: the far field of the vertical slope
-// (validation.md §4.5.1).
+// (docs/theory.md §8.5).
 //
 // Column of height H, free top (z = 0), fixed base (z = H), z measured down, tension positive.
 // Vertical displacement: ρ u_tt = M u_zz + ρ g f(t) − ρ μ u_t, with M the oedometric modulus,

@@ -1,5 +1,5 @@
 // Steady-state u–p saturated column under a harmonic surface load (Zienkiewicz, Chang & Bettess
-// 1980; validation.md §6.4.3; algorithm.md Appendix A.6).
+// 1980; docs/theory.md §8.9).
 //
 // z points down from the loaded, drained surface (z = 0) to the fixed, impermeable base (z = L).
 // Every field is a complex amplitude: f(z, t) = Re(F(z) e^{iωt}). The total vertical stress at
@@ -30,7 +30,7 @@ struct HarmonicColumn {
   double load_amplitude = 1.0;       ///< q0 [Pa]
   bool fluid_acceleration_in_darcy = true;
 
-  /// The dimensionless column of validation.md §6.4.3: L = ρ = V_c = α = 1, D/Q given,
+  /// The dimensionless column (docs/theory.md §8.9): L = ρ = V_c = α = 1, D/Q given,
   /// Π1 = k̄ρV_c²/(ωL²), Π2 = ω²L²/V_c², β = ρ_f/ρ.
   static HarmonicColumn dimensionless(double permeability_group, double frequency_group,
                                       double fluid_density_ratio = 1.0 / 3.0,

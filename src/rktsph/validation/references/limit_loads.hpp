@@ -1,5 +1,5 @@
 // Closed-form limit loads, band angles and undrained strip pore pressure used by the validation
-// cases (validation.md §4.4, §4.5.2, §5.3.6, §5.3.7, §6.4.4; algorithm.md Appendix A.2–A.4, A.7).
+// cases (docs/theory.md §8.1, §8.4, §8.6, §8.7, §8.10).
 //
 // Plane-strain Von Mises with developed flow equals Tresca with c = Y/√3, so every limit load is
 // written in terms of the cohesion c. Angles are in degrees.
@@ -7,10 +7,10 @@
 
 namespace rktsph::references {
 
-/// c = Y/√3: Tresca cohesion of a plane-strain Von Mises material (validation.md §0).
+/// c = Y/√3: Tresca cohesion of a plane-strain Von Mises material (docs/theory.md §8.1).
 double von_mises_plane_strain_cohesion(double yield_stress);
 
-// --- Vertical cut, φ = 0 (validation.md §4.5.2, Appendix A.2) -----------------------------------
+// --- Vertical cut, φ = 0 (docs/theory.md §8.6) ---------------------------------------------------
 
 /// γH/c at failure for the critical toe circle (Taylor 1937; chart value c/(γH) = 0.261).
 /// vertical_cut.py minimises over toe circles and finds 3.8313.
@@ -23,7 +23,7 @@ double taylor_critical_height(double cohesion, double unit_weight);
 /// H_c = 4 c/γ.
 double culmann_critical_height(double cohesion, double unit_weight);
 
-// --- Strip footing of width B flush with the crest of a vertical cut (§5.3.6, Appendix A.4) ---
+// --- Strip footing of width B flush with the crest of a vertical cut (docs/theory.md §8.7) ---
 
 /// Weightless soil: the uniaxial column under the footing (lower bound) and the 45° wedge (upper
 /// bound) meet at q = 2c.
@@ -33,7 +33,7 @@ double footing_on_cut_limit_pressure(double cohesion);
 /// subtracted).
 double footing_on_cut_wedge_pressure(double cohesion, double unit_weight, double footing_width,
                                      double wedge_angle_deg);
-/// The 45° wedge with self weight: q = 2c − γB/2 (Appendix A.4).
+/// The 45° wedge with self weight: q = 2c − γB/2 (eq. 8.3 at θ = 45°).
 double footing_on_cut_45_degree_wedge(double cohesion, double unit_weight, double footing_width);
 
 struct WedgeBound {
@@ -41,35 +41,36 @@ struct WedgeBound {
   double angle_deg = 0.0;  ///< angle of the sliding plane to the horizontal
 };
 /// The wedge bound minimised over the angles whose plane exits the face above the toe, tan θ ≤ H/B
-/// (validation.md §5.3.6: 93.8 kPa at 50.9° for c = 57.7 kPa, γ = 19.62 kN/m³, B = 2 m).
+/// (docs/theory.md eq. 8.3: 93.8 kPa at 50.9° for c = 57.7 kPa, γ = 19.62 kN/m³, B = 2 m).
 WedgeBound footing_on_cut_optimal_wedge(double cohesion, double unit_weight, double footing_width,
                                         double cut_height);
 
-// --- Bearing capacity of a strip on Tresca soil (§5.3.7, Appendix A.7) -------------------------
+// --- Bearing capacity of a strip on Tresca soil (docs/theory.md §8.7)
+// ------------------------------
 
 /// Prandtl (1920)/Hill: q_u = (2+π)c + q_s; self weight does not enter when φ = 0.
 double prandtl_bearing_capacity(double cohesion, double surcharge = 0.0);
-/// Kinematic upper bound of N_c for a rough footing on a thin rough-based layer (validation.md
-/// §5.3.7): N_c ≤ 2 + 2√2 + B/(2H) + H/B.
+/// Kinematic upper bound of N_c for a rough footing on a thin rough-based layer (docs/theory.md
+/// eq. 8.4): N_c ≤ 2 + 2√2 + B/(2H) + H/B.
 double thin_layer_bearing_factor_upper_bound(double footing_width, double layer_depth);
 
 // --- Shear-band angles, measured from the major (most compressive) principal stress axis ------
 
-/// Associated J2 in plane strain with developed flow (s_zz = 0): 45° (Appendix A.3).
+/// Associated J2 in plane strain with developed flow (s_zz = 0): 45° (docs/theory.md §8.4).
 double j2_plane_strain_band_angle_deg();
 /// Associated J2 at first yield of an elastic plane-strain sample (s_zz ≠ 0): Rudnicki–Rice with
 /// β = μ = 0, θ = 45° + ½ asin(N(1−2ν)/√(4−3N²)), N = s_zz/√J2 of the state σ_x = 0,
-/// σ_y = −S, σ_z = −νS (validation.md §4.4).
+/// σ_y = −S, σ_z = −νS (docs/theory.md eq. 8.2).
 double j2_first_yield_band_angle_deg(double poisson_ratio);
 /// Axial stress magnitude at first yield of an unconfined plane-strain sample: Y/√(1−ν+ν²).
 double plane_strain_first_yield_stress(double yield_stress, double poisson_ratio);
 /// Coulomb 45° − φ/2, Roscoe 45° − ψ/2, Arthur 45° − (φ+ψ)/4. Measured from the minor
-/// principal stress axis instead (as Appendix A.3 writes them) each is 90° minus these.
+/// principal stress axis instead each is 90° minus these.
 double coulomb_band_angle_deg(double friction_angle_deg);
 double roscoe_band_angle_deg(double dilatancy_angle_deg);
 double arthur_band_angle_deg(double friction_angle_deg, double dilatancy_angle_deg);
 
-// --- Undrained pore pressure under a flexible strip load (§6.4.4) -----------------------------
+// --- Undrained pore pressure under a flexible strip load (docs/theory.md §8.10) ---------------
 // Geometry: strip of half-width b on the surface of a half-plane, uniform pressure q, x across
 // the strip from its centre line, z depth below the surface (> 0). The elastic total stresses
 // give σ_x + σ_z = 2qα/π (compression positive), α the angle the strip subtends at (x, z).

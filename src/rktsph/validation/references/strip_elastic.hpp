@@ -1,6 +1,6 @@
 // Stresses under a uniform flexible strip load on a dry linear-elastic half-plane (plane strain):
-// the Flamant strip solution (Poulos & Davis 1974 §3.4; Timoshenko & Goodier §36), as
-// ../shared/reference/strip_elastic.py gives it.
+// the Flamant strip solution (Poulos & Davis 1974, section 3.4; Timoshenko & Goodier,
+// section 36).
 //
 // A pressure q (compression) acts on |x| <= b of the surface z = 0, z measured down (> 0). With
 //   α = atan((x+b)/z) − atan((x−b)/z)   (the angle the strip subtends at the point)

@@ -1,5 +1,5 @@
-// Terzaghi 1D consolidation with Biot-consistent coefficients (validation.md §6.4.2; algorithm.md
-// Appendix A.5).
+// Terzaghi 1D consolidation with Biot-consistent coefficients (docs/theory.md §8.8,
+// eq. 8.5).
 //
 // Column of drainage length H_d, drained (p = 0) at z = 0, impermeable at z = H_d, total load q0
 // applied suddenly at t = 0, no gravity (excess quantities), Biot α = 1, incompressible grains.
@@ -20,7 +20,7 @@ double loading_efficiency(double oedometric_modulus,
                           double biot_modulus = std::numeric_limits<double>::infinity());
 
 /// c_v = (k/γ_w) / (1/M + 1/Q) [m²/s], k the hydraulic conductivity [m/s]. With Q = ∞ this is the
-/// classical k·E_oed/γ_w of Appendix A.5.
+/// classical k·E_oed/γ_w.
 double consolidation_coefficient(double hydraulic_conductivity, double fluid_unit_weight,
                                  double oedometric_modulus,
                                  double biot_modulus = std::numeric_limits<double>::infinity());

@@ -1,5 +1,5 @@
-// Method-of-characteristics reference for the 1D Perzyna Von Mises bar (validation.md §4.3,
-// §5.3.3) and the analytical decay law of a viscoplastic front.
+// Method-of-characteristics reference for the 1D Perzyna Von Mises bar (docs/theory.md
+// §8.3) and the analytical decay law of a viscoplastic front.
 //
 // Model (tension positive, F = |σ|):
 //   ρ v_t = σ_x,   σ_t = E (v_x − ε̇_vp),   ε̇_vp = γ ⟨(|σ| − Y)/Y⟩^N sign(σ),
@@ -26,7 +26,7 @@ struct ViscoplasticBarParameters {
   double fluidity = 0.0;              ///< γ [1/s]
   double exponent = 1.0;              ///< N
   double hardening_modulus = 0.0;     ///< H = dY/d|ε_vp| [Pa]
-  /// Y never drops below this fraction of Y0; validation.md §4.3 uses 0.05.
+  /// Y never drops below this fraction of Y0; docs/theory.md §8.3 uses 0.05.
   double residual_yield_fraction = 0.05;
   LeftEnd left_end = LeftEnd::Fixed;
   /// Imposed velocity of the right end x = L [m/s] against time; called for t > 0.
@@ -95,7 +95,7 @@ class ViscoplasticBar {
 std::vector<ViscoplasticBarSample> viscoplastic_bar_history(
     const ViscoplasticBarParameters& parameters, double x, double end_time);
 
-/// Stress just behind a front entering material at rest, N = 1 (validation.md §4.3):
+/// Stress just behind a front entering material at rest, N = 1 (docs/theory.md eq. 8.1):
 /// |σ_f| − Y0 = (|σ0| − Y0) exp(−Eγt/(2Y0)), with the sign of σ0. H does not enter because
 /// ε_vp = 0 at the front. A front with |σ0| ≤ Y0 is elastic and keeps σ0.
 double viscoplastic_front_stress(double initial_front_stress, double initial_yield_stress,
