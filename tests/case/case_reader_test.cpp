@@ -15,6 +15,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "rktsph/case/computed_defaults.hpp"
+
 namespace rktsph {
 namespace {
 
@@ -539,6 +541,24 @@ TEST(CaseReader, DimensionDependentKeys) {
   }
 }
 
+TEST(CaseReader, ADimensionTheModelDoesNotSupportNamesTheModelsDimensions) {
+  for (const std::string model : {"dry_solid", "saturated_vpw"}) {
+    const std::string text = replace_once(read_fixture("bar1d_minimal.yaml"), "dimension: 1",
+                                          "model: " + model + "\ndimension: 3");
+    const InputError error = read_error(text);
+    EXPECT_EQ(error.key(), "dimension") << error.what();
+    EXPECT_EQ(error.value(), "3") << error.what();
+    EXPECT_EQ(error.location().file, kFile);
+    EXPECT_EQ(error.location().line, position_of(text, "dimension: 3").line) << error.what();
+    EXPECT_EQ(error.problem(), "the model '" + model + "' does not support 3D") << error.what();
+    EXPECT_EQ(error.allowed(), "1 or 2 with model: " + model) << error.what();
+  }
+  // Beyond three, the plain range.
+  const InputError error =
+      read_error(replace_once(read_fixture("bar1d_minimal.yaml"), "dimension: 1", "dimension: 4"));
+  EXPECT_EQ(error.allowed(), "an integer in [1, 3]") << error.what();
+}
+
 TEST(CaseReader, ShapeAndBoundaryConditionChoicesAreExclusive) {
   const std::string base = read_fixture("rich2d.yaml");
   const InputError two_shapes = read_error(replace_once(
@@ -913,7 +933,11 @@ void expect_same_case(const CaseDescription& a, const CaseDescription& b) {
   EXPECT_EQ(n.hourglass_filter, m.hourglass_filter);
   EXPECT_EQ(n.hourglass_kappa, m.hourglass_kappa);
   EXPECT_EQ(n.hourglass_h_over_dx, m.hourglass_h_over_dx);
-  EXPECT_EQ(n.hourglass_fields, m.hourglass_fields);
+  // The resolved case writes the computed defaults: an unset value reads back as that default.
+  EXPECT_EQ(n.hourglass_fields.value_or(default_hourglass_fields(n, a.dimension)),
+            m.hourglass_fields.value_or(default_hourglass_fields(m, b.dimension)));
+  EXPECT_EQ(n.stress_update.value_or(default_stress_update(a.dimension)),
+            m.stress_update.value_or(default_stress_update(b.dimension)));
   EXPECT_EQ(n.artificial_viscosity, m.artificial_viscosity);
   EXPECT_EQ(a.time.end, b.time.end);
   EXPECT_EQ(a.time.max_steps, b.time.max_steps);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rktsph/case/computed_defaults.hpp"
 #include "rktsph/materials/material_factory.hpp"
 
 namespace rktsph {
@@ -220,8 +221,7 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
   options.hourglass_kappa = numerics.hourglass_kappa;
   options.hourglass_h_over_dx = numerics.hourglass_h_over_dx;
   options.hourglass_fields = numerics.hourglass_fields;
-  options.stress_update = numerics.stress_update.value_or(
-      nodes_.dimension >= 2 ? StressUpdate::MeanVelocity : StressUpdate::HalfStep);
+  options.stress_update = numerics.stress_update.value_or(default_stress_update(nodes_.dimension));
   options.hourglass_stiffness =
       hourglass_stiffness(numerics, options.stress_update, nodes_.dimension);
   options.hourglass_plastic_fraction = numerics.hourglass_plastic_fraction;

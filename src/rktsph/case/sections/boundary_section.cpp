@@ -1,0 +1,168 @@
+// The `boundary_conditions` section: a list of conditions, each on a group and of exactly one kind
+// (docs/input-reference.md, "boundary_conditions").
+#include "rktsph/case/sections/sections.hpp"
+#include "rktsph/case/sections/value_readers.hpp"
+
+namespace rktsph {
+
+namespace {
+
+using Condition = BoundaryConditionSpec;
+
+const std::vector<std::string> kKinds = {"velocity", "fixed", "roller", "traction",
+                                         "pore_pressure"};
+
+void read_roller(const YamlNode& kind, Condition& condition, Reading& reading) {
+  const int dimension = reading.so_far.dimension;
+  if (dimension == 1 && to_text(kind) == "y") {
+    fail_at(kind, "a roller normal to y exists only in 2D", "'x'");
+  }
+  condition.kind = Condition::Kind::Roller;
+  condition.axis = to_choice(kind, axis_names(dimension)) == "x" ? 0 : 1;
+}
+
+/// Writes `name: value` when the condition is of `kind`.
+template <typename Write>
+auto emit_if(Condition::Kind kind, const char* name, Write write) {
+  return [kind, name, write](YAML::Emitter& out, const Condition& condition,
+                             const CaseDescription& description) {
+    if (condition.kind != kind) return;
+    out << YAML::Key << name << YAML::Value;
+    write(out, condition, description.dimension);
+  };
+}
+
+const KeyTable<Condition>& condition_keys() {
+  static const KeyTable<Condition> keys = {
+      section_key<Condition>(
+          "group", "word", "required", "a built-in or defined group", "The nodes it acts on.",
+          [](const YamlNode& node, Condition& condition, Reading& reading) {
+            condition.group = read_group_reference(node, reading.so_far.groups);
+          },
+          [](YAML::Emitter& out, const Condition& condition, const CaseDescription&) {
+            out << YAML::Key << "group" << YAML::Value << condition.group;
+          }),
+      in_unit(section_key<Condition>(
+                  "velocity", "map of components", "one kind", "keys x (and y in 2D); at least one",
+                  "Imposed velocity of the given components, each a time function; others free.",
+                  [](const YamlNode& node, Condition& condition, Reading& reading) {
+                    condition.kind = Condition::Kind::Velocity;
+                    condition.velocity = read_components(node, reading.so_far.dimension);
+                  },
+                  emit_if(Condition::Kind::Velocity, "velocity",
+                          [](YAML::Emitter& out, const Condition& condition, int dimension) {
+                            emit_components(out, condition.velocity, dimension);
+                          })),
+              "m/s"),
+      in_unit(section_key<Condition>(
+                  "traction", "map of components", "one kind", "keys x (and y in 2D); at least one",
+                  "Imposed traction of the given components (tension positive); others zero.",
+                  [](const YamlNode& node, Condition& condition, Reading& reading) {
+                    condition.kind = Condition::Kind::Traction;
+                    condition.traction = read_components(node, reading.so_far.dimension);
+                  },
+                  emit_if(Condition::Kind::Traction, "traction",
+                          [](YAML::Emitter& out, const Condition& condition, int dimension) {
+                            emit_components(out, condition.traction, dimension);
+                          })),
+              "Pa"),
+      section_key<Condition>(
+          "fixed", "boolean", "one kind", "true", "v = 0: a rough rigid wall.",
+          [](const YamlNode& node, Condition& condition, Reading&) {
+            if (!to_bool(node)) fail_at(node, "'fixed' can only be true", "true (or leave it out)");
+            condition.kind = Condition::Kind::Fixed;
+          },
+          emit_if(Condition::Kind::Fixed, "fixed",
+                  [](YAML::Emitter& out, const Condition&, int) { out << "true"; })),
+      in_unit(section_key<Condition>(
+                  "pore_pressure", "time function", "one kind", "model: saturated_vpw only",
+                  "Drained face: the excess pore pressure imposed on the group's nodes.",
+                  [](const YamlNode& node, Condition& condition, Reading&) {
+                    condition.kind = Condition::Kind::PorePressure;
+                    condition.pore_pressure = read_time_function(node);
+                  },
+                  emit_if(Condition::Kind::PorePressure, "pore_pressure",
+                          [](YAML::Emitter& out, const Condition& condition, int) {
+                            emit_time_function(out, *condition.pore_pressure);
+                          })),
+              "Pa"),
+      section_key<Condition>(
+          "roller", "word", "one kind", "x, or y in 2D: the axis of the normal",
+          "Smooth wall or symmetry plane: normal velocity and shear stress zero.", read_roller,
+          emit_if(Condition::Kind::Roller, "roller",
+                  [](YAML::Emitter& out, const Condition& condition, int) {
+                    out << (condition.axis == 0 ? "x" : "y");
+                  })),
+      section_key<Condition>(
+          "mirror", "boolean", "true", "true, false; with roller only",
+          "Fold mirror images of the neighbours into the operators (prototype R3).",
+          [](const YamlNode& node, Condition& condition, Reading&) {
+            condition.mirror = to_bool(node);
+          },
+          emit_if(Condition::Kind::Roller, "mirror",
+                  [](YAML::Emitter& out, const Condition& condition, int) {
+                    out << (condition.mirror ? "true" : "false");
+                  })),
+  };
+  return keys;
+}
+
+const Key<Condition>& condition_key(const std::string& name) {
+  for (const Key<Condition>& key : condition_keys())
+    if (key.name == name) return key;
+  return condition_keys().front();  // not reached: every name passed is in the table
+}
+
+Condition read_condition(const YamlNode& node, Reading& reading) {
+  const YamlMap item(node);
+  item.allow_only(key_names(condition_keys()));
+  Condition condition;
+  condition.where = item.where();
+  condition_key("group").read(item.require("group"), condition, reading);
+  const YamlNode& kind = item.require_one_of(kKinds);
+  const YamlNode* mirror = item.find("mirror");
+  if (mirror != nullptr && kind.key != "roller") {
+    fail_at(*mirror, "'mirror' only applies to a 'roller' condition", "remove 'mirror'", true);
+  }
+  condition_key(kind.key).read(kind, condition, reading);
+  if (mirror != nullptr) condition_key("mirror").read(*mirror, condition, reading);
+  return condition;
+}
+
+void read_conditions(const YamlNode& node, CaseDescription& description, Reading& reading) {
+  for (const YamlNode& item : to_sequence(node))
+    reading.errors.attempt(
+        [&] { description.boundary_conditions.push_back(read_condition(item, reading)); });
+  for (const Condition& condition : description.boundary_conditions)
+    if (condition.kind == Condition::Kind::PorePressure &&
+        description.model != ModelKind::SaturatedVpw)
+      reading.errors.add(InputError(condition.where, "boundary_conditions.pore_pressure", "",
+                                    "a pore-pressure condition needs the saturated model",
+                                    "model: saturated_vpw"));
+}
+
+void emit_conditions(YAML::Emitter& out, const CaseDescription& description,
+                     const CaseDescription&) {
+  if (description.boundary_conditions.empty()) return;
+  out << YAML::Key << "boundary_conditions" << YAML::Value << YAML::BeginSeq;
+  for (const Condition& condition : description.boundary_conditions) {
+    out << YAML::BeginMap;
+    emit_keys(out, condition_keys(), condition, description);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+}
+
+}  // namespace
+
+Key<CaseDescription> boundary_conditions_section() {
+  return section_key<CaseDescription>("boundary_conditions", "list", "none", "",
+                                      "Imposed velocities, tractions and pore pressures.",
+                                      read_conditions, emit_conditions);
+}
+
+void declare_boundary_condition_keys(std::vector<DeclaredKey>& list) {
+  declare(list, "boundary_conditions[].", condition_keys());
+}
+
+}  // namespace rktsph

@@ -1,0 +1,107 @@
+// The `pore_fluid` section: pore water and the pressure solve of the saturated model
+// (docs/input-reference.md, "pore_fluid"; docs/theory.md §6).
+#include "rktsph/case/computed_defaults.hpp"
+#include "rktsph/case/sections/sections.hpp"
+#include "rktsph/case/sections/value_readers.hpp"
+
+namespace rktsph {
+
+namespace {
+
+NumberRange open_unit_interval() {
+  return {0.0, 1.0, true, true};
+}
+NumberRange biot_range() {
+  return {0.0, 1.0, true, false};
+}
+NumberRange tolerance_range() {
+  return {0.0, 1e-3, true, false};
+}
+
+const KeyTable<PoreFluidSpec>& pore_fluid_keys() {
+  using P = PoreFluidSpec;
+  static const KeyTable<PoreFluidSpec> keys = {
+      number_key<P>("bulk_modulus", &P::bulk_modulus, NumberRange::positive(), "Pa",
+                    "K_w of the water; the Biot modulus is Q = K_w / n.", true),
+      number_key<P>("density", &P::density, NumberRange::positive(), "kg/m³",
+                    "ρ_w, to convert hydraulic_conductivity.", true),
+      number_key<P>("porosity", &P::porosity, open_unit_interval(), "–", "n.", true),
+      number_key<P>("hydraulic_conductivity", &P::hydraulic_conductivity,
+                    NumberRange::non_negative(), "m/s", "Darcy's k; 0 is undrained.", true),
+      number_key<P>("gravity", &P::gravity, NumberRange::positive(), "m/s²",
+                    "g in the conversion k → k̄ = k / (ρ_w g) only; not a body force."),
+      number_key<P>("biot_coefficient", &P::biot_coefficient, biot_range(), "–", "α."),
+      // beta = 0 adds a spurious permeability of about dt/rho (prototype-vpw §2.2): not offered.
+      Key<P>{"projection_beta", "integer", "", "1", "1", "Incremental projection.", false,
+             [](const YamlNode& node, P& fluid, Reading&) {
+               fluid.projection_beta = static_cast<double>(to_integer(node, 1, 1));
+             },
+             [](YAML::Emitter& out, const P& fluid, const CaseDescription&) {
+               out << YAML::Key << "projection_beta" << YAML::Value
+                   << static_cast<int>(fluid.projection_beta);
+             }},
+      choice_key<P, bool>("preconditioner", &P::incomplete_cholesky,
+                          {{"jacobi", false}, {"incomplete_cholesky", true}},
+                          "Preconditioner of the conjugate-gradient pressure solve."),
+      number_key<P>("solver_tolerance", &P::solver_tolerance, tolerance_range(), "–",
+                    "Relative residual at which the solve stops."),
+      // The default depends on the number of SPH nodes, known only once the lattice is built
+      // (models/pressure_projection.cpp), so the resolved case leaves it out when unset.
+      Key<P>{"solver_max_iterations", "integer", "", "2 × nodes + 10", "[1, 100000000]",
+             "Iteration limit; a solve that does not converge stops the run.", false,
+             [](const YamlNode& node, P& fluid, Reading&) {
+               fluid.solver_max_iterations = to_integer(node, 1, 100000000);
+             },
+             [](YAML::Emitter& out, const P& fluid, const CaseDescription&) {
+               if (fluid.solver_max_iterations > 0)
+                 out << YAML::Key << "solver_max_iterations" << YAML::Value
+                     << fluid.solver_max_iterations;
+             }},
+      Key<P>{
+          "laplacian_scale", "number", "–", "computed", documented_range(NumberRange::positive()),
+          "Factor of the Morris Laplacian; computed so that L(|x|²) = 2d in the interior.", false,
+          [](const YamlNode& node, P& fluid, Reading&) {
+            fluid.laplacian_scale = to_number(node, NumberRange::positive());
+          },
+          [](YAML::Emitter& out, const P& fluid, const CaseDescription& description) {
+            const double scale = fluid.laplacian_scale > 0.0 ? fluid.laplacian_scale
+                                                             : default_laplacian_scale(description);
+            out << YAML::Key << "laplacian_scale" << YAML::Value << number(scale);
+          }},
+      number_key<P>("checkerboard_stabilisation", &P::checkerboard_stabilisation,
+                    NumberRange::non_negative(), "–",
+                    "θ of the pore-pressure checkerboard stabilisation (docs/theory.md §6.6)."),
+  };
+  return keys;
+}
+
+void read_pore_fluid(const YamlNode& node, CaseDescription& description, Reading& reading) {
+  if (description.model != ModelKind::SaturatedVpw) {
+    fail_at(node, "'pore_fluid' only applies to the saturated model",
+            "model: saturated_vpw, or remove 'pore_fluid'", true);
+  }
+  PoreFluidSpec fluid;
+  fluid.where = YamlMap(node).where();
+  read_keys(node, pore_fluid_keys(), fluid, reading);
+  description.pore_fluid = fluid;
+}
+
+}  // namespace
+
+Key<CaseDescription> pore_fluid_section() {
+  return section_key<CaseDescription>(
+      "pore_fluid", "map", "none", "required with model: saturated_vpw, an error otherwise",
+      "Pore water and the pressure solve of the saturated model.", read_pore_fluid,
+      [](YAML::Emitter& out, const CaseDescription& description, const CaseDescription&) {
+        if (!description.pore_fluid) return;
+        out << YAML::Key << "pore_fluid" << YAML::Value << YAML::BeginMap;
+        emit_keys(out, pore_fluid_keys(), *description.pore_fluid, description);
+        out << YAML::EndMap;
+      });
+}
+
+void declare_pore_fluid_keys(std::vector<DeclaredKey>& list) {
+  declare(list, "pore_fluid.", pore_fluid_keys());
+}
+
+}  // namespace rktsph
