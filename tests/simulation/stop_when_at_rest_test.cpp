@@ -44,6 +44,18 @@ TEST(StopWhenAtRest, EndsADampedRunOnceTheBodyHasSettled) {
   EXPECT_NEAR(-u_top / settlement, 1.0, 0.02);
 }
 
+TEST(StopWhenAtRest, IsTheCaseKeyTimeStopWhenAtRest) {
+  test::ElasticBlock block;
+  std::string text = block.text();
+  const std::string end = "time: {end: 1.0}";
+  ASSERT_NE(text.find(end), std::string::npos);
+  text.replace(text.find(end), end.size(), "time: {end: 1.0, stop_when_at_rest: 1.0e-3}");
+  EXPECT_EQ(read_case_text(text, "block.yaml").time.stop_when_at_rest, 1.0e-3);
+  text.replace(text.find("1.0e-3"), 6, "1.5");
+  EXPECT_THROW(read_case_text(text, "block.yaml"), InputError);
+  EXPECT_FALSE(block.description().time.stop_when_at_rest.has_value());
+}
+
 TEST(StopWhenAtRest, NeverEndsAnUndampedRun) {
   Simulation simulation(settling_block(0.0, 0.5));
   StopWhenAtRest stop(1e-3);

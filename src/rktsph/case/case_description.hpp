@@ -169,6 +169,9 @@ struct NumericsSpec {
 struct TimeSpec {
   double end = 0.0;  ///< [s], > 0
   long max_steps = 100000000;
+  /// Ends the run once the largest speed stays at or below this fraction of its peak for one
+  /// P-wave transit of the body (docs/theory.md §2.6); unset: the run goes to `end`.
+  std::optional<double> stop_when_at_rest;
   SourceLocation where;
 };
 

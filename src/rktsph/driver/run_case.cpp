@@ -13,6 +13,7 @@
 #include "rktsph/output/output_folder.hpp"
 #include "rktsph/output/run_log.hpp"
 #include "rktsph/output/run_observers.hpp"
+#include "rktsph/simulation/stop_when_at_rest.hpp"
 
 namespace rktsph {
 
@@ -113,6 +114,11 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
     progress = std::make_unique<ProgressObserver>(description.time.end, *options.progress_stream,
                                                   options.progress_is_terminal, options.quiet);
     simulation->add_observer(*progress);
+  }
+  std::unique_ptr<StopWhenAtRest> at_rest;
+  if (description.time.stop_when_at_rest) {
+    at_rest = std::make_unique<StopWhenAtRest>(*description.time.stop_when_at_rest);
+    simulation->add_observer(*at_rest);
   }
   for (Observer* observer : options.observers)
     simulation->add_observer(*observer);

@@ -1,5 +1,5 @@
-// The physics models a case can select, by the name of its `model` key: what each supports, how it
-// is made from the case, when its operators are built, and the correction it adds to the step.
+// The physics models a case can select with its `model` key: how each is made from the case, when
+// its operators are built, and the correction it adds to the step.
 // The assembly of a run (simulation/assembly.*) knows no model by name; a new model is one entry
 // in model_registry.cpp (docs/theory.md §2.6).
 #pragma once
@@ -10,6 +10,7 @@
 
 #include "rktsph/boundary/boundary_conditions.hpp"
 #include "rktsph/case/case_description.hpp"
+#include "rktsph/case/model_names.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/materials/material.hpp"
 #include "rktsph/physics/physics_model.hpp"
@@ -18,9 +19,9 @@
 namespace rktsph {
 
 struct RegisteredModel {
-  std::string name;  ///< the case's `model` value
+  /// Its name in the case file and the dimensions it supports are the case layer's
+  /// (case/model_names.hpp, which the reader checks a case against): model_name(kind).
   ModelKind kind;
-  std::vector<int> dimensions;  ///< the spatial dimensions it supports
   OperatorPolicy operator_policy = OperatorPolicy::ReferenceConfiguration;
   /// The model from the case and its materials (in the order of the case's material names).
   std::unique_ptr<PhysicsModel> (*create)(const CaseDescription& description,
@@ -35,7 +36,7 @@ struct RegisteredModel {
                                                        double dt) = nullptr;
 };
 
-/// Every model, in a fixed order.
+/// Every model, in the order of model_names().
 const std::vector<RegisteredModel>& registered_models();
 /// The entry of `kind` (every ModelKind has one).
 const RegisteredModel& registered_model(ModelKind kind);
