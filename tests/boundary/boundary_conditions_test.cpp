@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
@@ -33,19 +35,36 @@ std::int32_t node_at(const Simulation& simulation, double x, double y) {
       {static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), 0});
 }
 
+/// The normals along which the node's stress increment is projected (none off the surface).
+SurfaceNormals projected_normals(const BoundaryConditions& conditions, std::int32_t node) {
+  const SurfaceSet& surface = conditions.surface();
+  const auto k = std::find(surface.node.begin(), surface.node.end(), node);
+  if (k == surface.node.end()) return {};
+  return surface.projected_normals(static_cast<std::size_t>(k - surface.node.begin()));
+}
+
 TEST(BoundaryConditions, FacesMirrorsAndProjections) {
   Simulation simulation(read_case_text(kBlock, "block.yaml"));
   const BoundaryConditions& conditions = simulation.boundary_conditions();
   ASSERT_EQ(conditions.mirror_planes().size(), 1u);
   EXPECT_EQ(conditions.mirror_planes()[0].axis, 1);
   // The bottom is a mirror plane, not a face.
-  EXPECT_TRUE(conditions.face_normals(node_at(simulation, 3, 0)).empty());
+  const auto& surface_nodes = conditions.surface().node;
+  EXPECT_EQ(std::count(surface_nodes.begin(), surface_nodes.end(), node_at(simulation, 3, 0)), 0);
   // The free right face is projected along x; the fixed left face is not (its stress is a
   // reaction); the fixed-free corner at the top left is projected along y (its top face is free).
-  EXPECT_EQ(conditions.projected_axes(node_at(simulation, 6, 2)), 1u);
-  EXPECT_EQ(conditions.projected_axes(node_at(simulation, 0, 2)), 0u);
-  EXPECT_EQ(conditions.projected_axes(node_at(simulation, 0, 4)), 2u);
-  EXPECT_EQ(conditions.projected_axes(node_at(simulation, 6, 4)), 3u);  // free-free corner
+  const Vector3 x{1.0, 0.0, 0.0}, y{0.0, 1.0, 0.0};
+  const SurfaceNormals right = projected_normals(conditions, node_at(simulation, 6, 2));
+  ASSERT_EQ(right.count, 1);
+  EXPECT_EQ(right.normal[0], x);
+  EXPECT_EQ(projected_normals(conditions, node_at(simulation, 0, 2)).count, 0);
+  const SurfaceNormals top_left = projected_normals(conditions, node_at(simulation, 0, 4));
+  ASSERT_EQ(top_left.count, 1);
+  EXPECT_EQ(top_left.normal[0], y);
+  const SurfaceNormals corner = projected_normals(conditions, node_at(simulation, 6, 4));
+  ASSERT_EQ(corner.count, 2);  // free-free corner
+  EXPECT_EQ(corner.normal[0], x);
+  EXPECT_EQ(corner.normal[1], y);
 }
 
 TEST(BoundaryConditions, TractionIsImposedAsSigmaDotN) {

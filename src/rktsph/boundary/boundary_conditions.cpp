@@ -20,23 +20,41 @@ const std::vector<std::int32_t>& group_nodes(
                      "a group defined under 'groups' or a built-in group");
   return it->second;
 }
-bool same_normal(const FaceNormal& a, const FaceNormal& b) {
-  return a.axis == b.axis && a.sign == b.sign;
+bool same_normal(const Vector3& a, const Vector3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] > 1.0 - 1e-9;
+}
+
+std::vector<Vector3> facet_normals(const SurfaceSet& surface,
+                                   const std::vector<std::int32_t>& surface_index,
+                                   std::int32_t node) {
+  std::vector<Vector3> normals;
+  const std::int32_t k = surface_index[static_cast<std::size_t>(node)];
+  if (k < 0) return normals;
+  for (std::int32_t f = surface.facets_begin(static_cast<std::size_t>(k));
+       f < surface.facets_end(static_cast<std::size_t>(k)); ++f)
+    normals.push_back(surface.facet_normal(f));
+  return normals;
 }
 
 // The outward normals shared by every node of a group: the face(s) the group lies on.
-std::vector<FaceNormal> common_normals(const std::vector<std::vector<FaceNormal>>& normals,
-                                       const std::vector<std::int32_t>& members) {
-  std::vector<FaceNormal> common = normals[static_cast<std::size_t>(members.front())];
+std::vector<Vector3> common_normals(const SurfaceSet& surface,
+                                    const std::vector<std::int32_t>& surface_index,
+                                    const std::vector<std::int32_t>& members) {
+  std::vector<Vector3> common = facet_normals(surface, surface_index, members.front());
   for (std::int32_t node : members) {
-    const auto& own = normals[static_cast<std::size_t>(node)];
-    std::erase_if(common, [&](const FaceNormal& c) {
+    const std::vector<Vector3> own = facet_normals(surface, surface_index, node);
+    std::erase_if(common, [&](const Vector3& c) {
       return std::none_of(own.begin(), own.end(),
-                          [&](const FaceNormal& o) { return same_normal(o, c); });
+                          [&](const Vector3& o) { return same_normal(o, c); });
     });
   }
   return common;
 }
+
+std::uint8_t all_components(int dimension) {
+  return static_cast<std::uint8_t>((1u << dimension) - 1);
+}
+
 bool same_function(const TimeFunction& a, const TimeFunction& b) {
   return a.kind == b.kind && a.value == b.value && a.start == b.start && a.duration == b.duration &&
          a.table == b.table && a.amplitude == b.amplitude && a.period == b.period &&
@@ -138,11 +156,14 @@ BoundaryConditions::BoundaryConditions(
   const std::size_t n = nodes.sph_nodes.size();
   const double tolerance = 1e-6 * nodes.spacing;
   const std::vector<int> velocity_owner = refuse_conflicting_velocities(description, nodes, groups);
+  dimension_ = d;
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c)
+      stress_field_[static_cast<std::size_t>(a)][static_cast<std::size_t>(c)] =
+          model.stress_field(a, c);
   velocity_axes_.assign(n, 0);
-  projected_axes_.assign(n, 0);
   pore_pressure_field_ = model.pore_pressure_field();
   biot_coefficient_ = model.biot_coefficient();
-  face_normals_.assign(n, {});
 
   // Mirror planes first: they decide which lattice faces are real faces.
   std::vector<std::pair<int, std::int32_t>> rollers;  // (axis, node)
@@ -179,103 +200,75 @@ BoundaryConditions::BoundaryConditions(
       if (std::abs(nodes.sph_nodes.position[m.axis][i] - m.coordinate) <= tolerance)
         mirror_axes_[i] |= static_cast<std::uint8_t>(1u << m.axis);
 
-  // Faces: lattice directions with no neighbour node, unless a mirror plane closes them.
-  for (std::size_t i = 0; i < n; ++i) {
-    for (int a = 0; a < d; ++a)
-      for (int sign : {-1, 1}) {
-        LatticeIndex neighbour = nodes.node_index[i];
-        neighbour[a] += sign;
-        if (nodes.node_at(neighbour) >= 0) continue;
-        if (!((mirror_axes_[i] >> a) & 1u)) face_normals_[i].push_back(FaceNormal{a, sign});
-      }
-  }
+  // The lattice's faces: directions with no neighbour node, unless a mirror plane closes them.
+  lattice_surface(nodes, mirror_axes_, surface_);
+  std::vector<std::int32_t> surface_index(n, -1);
+  for (std::size_t k = 0; k < surface_.size(); ++k)
+    surface_index[static_cast<std::size_t>(surface_.node[k])] = static_cast<std::int32_t>(k);
 
   // Which velocity components are imposed where, and on which faces: a velocity condition acts
   // on the face its group lies on; the node's other faces stay traction-free. This matters at a
   // corner where a fixed face meets a free one: treating the free face's traction there as a
   // reaction gives a growing corner mode (found by the step-matrix test, docs/theory.md §5.1).
-  std::vector<std::vector<FaceNormal>> velocity_faces(n);
+  driven_normals_.assign(n, {});
   for (const auto& [axis, node] : rollers)
     velocity_axes_[node] |= static_cast<std::uint8_t>(1u << axis);
   for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
     const auto& members = group_nodes(groups, condition);
     std::uint8_t axes = 0;
-    if (condition.kind == BoundaryConditionSpec::Kind::Fixed)
-      axes = static_cast<std::uint8_t>((1u << d) - 1);
+    if (condition.kind == BoundaryConditionSpec::Kind::Fixed) axes = all_components(d);
     if (condition.kind == BoundaryConditionSpec::Kind::Velocity)
       for (int a = 0; a < d; ++a)
         if (condition.velocity[a]) axes |= static_cast<std::uint8_t>(1u << a);
     if (axes == 0) continue;
-    const std::vector<FaceNormal> faces = common_normals(face_normals_, members);
+    const std::vector<Vector3> faces = common_normals(surface_, surface_index, members);
     for (std::int32_t node : members) {
       velocity_axes_[node] |= axes;
       // A group on no common face (a point, a region): all of its nodes' faces are driven.
-      const auto& driven = faces.empty() ? face_normals_[node] : faces;
-      for (const FaceNormal& f : driven)
-        velocity_faces[node].push_back(f);
+      const auto driven_faces =
+          faces.empty() ? facet_normals(surface_, surface_index, node) : faces;
+      auto& driven = driven_normals_[static_cast<std::size_t>(node)];
+      driven.insert(driven.end(), driven_faces.begin(), driven_faces.end());
     }
   }
-  auto is_driven = [&](std::int32_t node, const FaceNormal& normal) {
-    const auto& driven = velocity_faces[static_cast<std::size_t>(node)];
-    return std::any_of(driven.begin(), driven.end(),
-                       [&](const FaceNormal& f) { return same_normal(f, normal); });
-  };
+  classify(surface_);
 
-  // Stress constraints, weakest first: natural traction-free faces, roller shear, then tractions.
+  // Stress constraints besides the traction-free facets: roller shear, then tractions.
   const int zero = add_function(TimeFunction::constant(0.0));
-  auto add_face_stress = [&](std::int32_t node, const FaceNormal& normal, int component,
-                             int function) {
-    // Traction t = sigma . n: on a face with outward normal sign*e_a, sigma_(a,c) = sign * t_c.
-    if (is_driven(node, normal) && ((velocity_axes_[node] >> component) & 1u))
-      return;  // a reaction on the driven face, not a traction
-    const int field = model.stress_field(normal.axis, component);
-    // Saturated model: the traction acts on the total stress, sigma'_nn = t_n + alpha p_w.
-    if (field >= 0)
-      stress_constraints_.push_back({node, field, function, static_cast<double>(normal.sign),
-                                     pore_pressure_field_ >= 0 && component == normal.axis});
-  };
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto node = static_cast<std::int32_t>(i);
-    for (const FaceNormal& normal : face_normals_[i]) {
-      for (int c = 0; c < d; ++c)
-        add_face_stress(node, normal, c, zero);
-      if (!(is_driven(node, normal) && ((velocity_axes_[i] >> normal.axis) & 1u)))
-        projected_axes_[i] |= static_cast<std::uint8_t>(1u << normal.axis);
-    }
-  }
   for (const auto& [axis, node] : rollers)
     for (int c = 0; c < d; ++c)
       if (c != axis) {
         const int field = model.stress_field(axis, c);
-        if (field >= 0) stress_constraints_.push_back({node, field, zero, 1.0});
+        if (field >= 0) roller_shear_.push_back({node, field, zero, 1.0});
       }
 
   for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
     if (condition.kind != BoundaryConditionSpec::Kind::Traction) continue;
     const auto& members = group_nodes(groups, condition);
     // The face the traction acts on: the outward normal shared by every node of the group.
-    const std::vector<FaceNormal> common = common_normals(face_normals_, members);
+    const std::vector<Vector3> common = common_normals(surface_, surface_index, members);
     if (common.size() != 1)
       throw InputError(condition.where, "boundary_conditions.group", condition.group,
                        common.empty() ? "the group's nodes share no free face, so the traction "
                                         "has no face to act on"
                                       : "the group's nodes share more than one face normal",
                        "a group of nodes on one straight free face (e.g. an edge group)");
+    std::array<int, 3> function{-1, -1, -1};
     for (int c = 0; c < d; ++c) {
       if (!condition.traction[c]) continue;
       // On a face whose velocity component c is imposed, sigma.n is the reaction to that
       // velocity: a traction there would be dropped silently, so it is refused.
       for (std::int32_t node : members) {
         const int owner = velocity_owner[static_cast<std::size_t>(node) * d + c];
-        if (owner >= 0 && is_driven(node, common.front()) && ((velocity_axes_[node] >> c) & 1u))
+        if (owner >= 0 && driven(node, common.front()) && ((velocity_axes_[node] >> c) & 1u))
           refuse_conflict(description.boundary_conditions[static_cast<std::size_t>(owner)],
                           condition, nodes, node, c,
                           "a traction and an imposed velocity act on the same face along");
       }
-      const int function = add_function(*condition.traction[c]);
-      for (std::int32_t node : members)
-        add_face_stress(node, common.front(), c, function);
+      function[static_cast<std::size_t>(c)] = add_function(*condition.traction[c]);
     }
+    for (std::int32_t node : members)
+      tractions_.push_back({node, common.front(), function});
   }
 
   // Drained faces: prescribed pore pressure (a Dirichlet row of the pressure solve too).
@@ -312,6 +305,93 @@ BoundaryConditions::BoundaryConditions(
   }
 }
 
+bool BoundaryConditions::driven(std::int32_t node, const Vector3& normal) const {
+  const auto& faces = driven_normals_[static_cast<std::size_t>(node)];
+  return std::any_of(faces.begin(), faces.end(),
+                     [&](const Vector3& f) { return same_normal(f, normal); });
+}
+
+void BoundaryConditions::classify(SurfaceSet& surface) const {
+  const std::uint8_t every = all_components(dimension_);
+  for (std::size_t k = 0; k < surface.size(); ++k) {
+    const std::int32_t node = surface.node[k];
+    for (std::int32_t f = surface.facets_begin(k); f < surface.facets_end(k); ++f) {
+      const Vector3 n = surface.facet_normal(f);
+      const auto i = static_cast<std::size_t>(f);
+      surface.reactions[i] =
+          driven(node, n) ? static_cast<std::uint8_t>(velocity_axes_[node] & every) : 0;
+      // Projected unless the whole normal velocity is imposed on this face.
+      bool normal_velocity_imposed = true;
+      for (int c = 0; c < dimension_; ++c)
+        if (n[static_cast<std::size_t>(c)] != 0.0 && !((surface.reactions[i] >> c) & 1u))
+          normal_velocity_imposed = false;
+      surface.projected[i] = normal_velocity_imposed ? 0 : 1;
+    }
+  }
+}
+
+void BoundaryConditions::replace_surface(const SurfaceSet& surface) {
+  surface_.node = surface.node;
+  surface_.first_facet = surface.first_facet;
+  surface_.normal = surface.normal;
+  surface_.reactions = surface.reactions;
+  surface_.projected = surface.projected;
+  classify(surface_);
+}
+
+StressTensor BoundaryConditions::stress_at(const FieldArray& values, std::size_t row) const {
+  StressTensor sigma{};
+  for (std::size_t a = 0; a < 3; ++a)
+    for (std::size_t c = 0; c < 3; ++c)
+      if (stress_field_[a][c] >= 0) sigma[a][c] = values(stress_field_[a][c], row);
+  return sigma;
+}
+
+void BoundaryConditions::store_stress(const StressTensor& sigma, FieldArray& values,
+                                      std::size_t row) const {
+  for (std::size_t a = 0; a < 3; ++a)
+    for (std::size_t c = a; c < 3; ++c)
+      if (stress_field_[a][c] >= 0) values(stress_field_[a][c], row) = sigma[a][c];
+}
+
+std::optional<double> BoundaryConditions::biot_pore_pressure(const FieldArray& values,
+                                                             std::size_t row) const {
+  if (pore_pressure_field_ < 0) return std::nullopt;
+  return biot_coefficient_ * values(pore_pressure_field_, row);
+}
+
+void BoundaryConditions::append_overwritten(
+    std::int32_t node, const Vector3& normal, std::uint8_t components,
+    std::vector<std::pair<std::int32_t, int>>& pairs) const {
+  const auto on_axis = as_axis_normal(normal);
+  for (int a = 0; a < dimension_; ++a)
+    for (int c = 0; c < dimension_; ++c) {
+      // On an axis only row a of sigma changes; on any other normal the whole in-plane tensor.
+      const bool changed = on_axis ? a == on_axis->axis && ((components >> c) & 1u) : c >= a;
+      const int field = stress_field_[static_cast<std::size_t>(a)][static_cast<std::size_t>(c)];
+      if (changed && field >= 0) pairs.emplace_back(node, field);
+    }
+}
+
+std::vector<std::pair<std::int32_t, int>> BoundaryConditions::constrained_stress() const {
+  std::vector<std::pair<std::int32_t, int>> pairs;
+  const std::uint8_t every = all_components(dimension_);
+  for (std::size_t k = 0; k < surface_.size(); ++k)
+    for (std::int32_t f = surface_.facets_begin(k); f < surface_.facets_end(k); ++f)
+      append_overwritten(surface_.node[k], surface_.facet_normal(f),
+                         every & ~surface_.reactions[static_cast<std::size_t>(f)], pairs);
+  for (const Constraint& c : roller_shear_)
+    pairs.emplace_back(c.node, c.field);
+  for (const ImposedTraction& load : tractions_) {
+    std::uint8_t given = 0;
+    for (int c = 0; c < dimension_; ++c)
+      if (load.function[static_cast<std::size_t>(c)] >= 0)
+        given |= static_cast<std::uint8_t>(1u << c);
+    append_overwritten(load.node, load.normal, given, pairs);
+  }
+  return pairs;
+}
+
 void BoundaryConditions::apply(double time, FieldArray& values,
                                std::span<const std::int32_t> node_to_row) const {
   // Evaluate each time function once per call.
@@ -327,15 +407,48 @@ void BoundaryConditions::apply(double time, FieldArray& values,
   auto row_of = [&](std::int32_t node) {
     return node_to_row.empty() ? node : node_to_row[static_cast<std::size_t>(node)];
   };
-  for (const auto* list : {&pressure_constraints_, &stress_constraints_, &velocity_constraints_})
-    for (const Constraint& c : *list) {
+  auto impose = [&](const std::vector<Constraint>& list) {
+    for (const Constraint& c : list) {
       const std::int32_t row = row_of(c.node);
-      if (row < 0) continue;
-      const auto r = static_cast<std::size_t>(row);
-      double v = c.scale * value[c.function];
-      if (c.plus_pore_pressure) v += biot_coefficient_ * values(pore_pressure_field_, r);
-      values(c.field, r) = v;
+      if (row >= 0) values(c.field, static_cast<std::size_t>(row)) = c.scale * value[c.function];
     }
+  };
+  impose(pressure_constraints_);
+  // Stress, weakest first: traction-free facets, roller shear, then the imposed tractions. The
+  // saturated model's tractions act on the total stress, read after p_w is imposed (§5.1).
+  const std::uint8_t every = all_components(dimension_);
+  for (std::size_t k = 0; k < surface_.size(); ++k) {
+    const std::int32_t row = row_of(surface_.node[k]);
+    if (row < 0) continue;
+    const auto r = static_cast<std::size_t>(row);
+    StressTensor sigma = stress_at(values, r);
+    TractionCondition free_facet;
+    free_facet.biot_pore_pressure = biot_pore_pressure(values, r);
+    for (std::int32_t f = surface_.facets_begin(k); f < surface_.facets_end(k); ++f) {
+      free_facet.normal = surface_.facet_normal(f);
+      free_facet.components = every & ~surface_.reactions[static_cast<std::size_t>(f)];
+      impose_traction(free_facet, dimension_, sigma);
+    }
+    store_stress(sigma, values, r);
+  }
+  impose(roller_shear_);
+  for (const ImposedTraction& load : tractions_) {
+    const std::int32_t row = row_of(load.node);
+    if (row < 0) continue;
+    const auto r = static_cast<std::size_t>(row);
+    TractionCondition condition;
+    condition.normal = load.normal;
+    condition.biot_pore_pressure = biot_pore_pressure(values, r);
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (load.function[c] < 0) continue;
+      condition.traction[c] = value[load.function[c]];
+      condition.components |= static_cast<std::uint8_t>(1u << c);
+    }
+    StressTensor sigma = stress_at(values, r);
+    impose_traction(condition, dimension_, sigma);
+    store_stress(sigma, values, r);
+  }
+  impose(velocity_constraints_);
 }
 
 }  // namespace rktsph

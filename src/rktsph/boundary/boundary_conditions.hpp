@@ -1,15 +1,19 @@
 // Boundary conditions on SPH nodes (docs/theory.md §5.1): imposed velocities, fixed nodes,
 // rollers / symmetry planes (mirror images, docs/theory.md §4.5), tractions, and the natural
-// traction-free condition on every face that has no other condition.
+// traction-free condition on every surface facet, of any unit normal (eq. 5.1a).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "rktsph/boundary/surface_set.hpp"
+#include "rktsph/boundary/surface_traction.hpp"
 #include "rktsph/case/case_description.hpp"
 #include "rktsph/core/field_array.hpp"
 #include "rktsph/geometry/node_sets.hpp"
@@ -18,12 +22,11 @@
 
 namespace rktsph {
 
-/// An outward face normal along a lattice axis.
-struct FaceNormal {
-  int axis = 0;
-  int sign = 1;
-};
-
+/// The boundary conditions of a case, compiled once from its `boundary_conditions` (docs/theory.md
+/// §5.1): imposed velocities, fixed nodes, rollers and their mirror planes, drained pore pressure
+/// and imposed tractions as functions of time. They act on a surface set (surface()): the lattice
+/// faces, built here once; V2 will replace it every step with its free-surface detection
+/// (replace_surface).
 class BoundaryConditions {
  public:
   /// Validates the case's conditions against the groups and the lattice (InputError at the
@@ -37,15 +40,12 @@ class BoundaryConditions {
   /// Per node, bit a set when the node lies on a mirror plane normal to axis a.
   std::span<const std::uint8_t> mirror_axes() const { return mirror_axes_; }
 
-  /// Bit a set: node's stress increments are projected so that sigma_aa is kept (a face with
-  /// normal along a whose normal velocity is not imposed; docs/theory.md eq. 5.1).
-  std::uint8_t projected_axes(std::int32_t node) const { return projected_axes_[node]; }
-
-  /// Outward normals of the faces a node lies on (lattice directions with no neighbour and no
-  /// mirror image).
-  const std::vector<FaceNormal>& face_normals(std::int32_t node) const {
-    return face_normals_[node];
-  }
+  /// The surface nodes, their outward unit normals, which facets are projected traction-free and
+  /// which traction components are reactions to imposed velocities.
+  const SurfaceSet& surface() const { return surface_; }
+  /// Takes `surface` (normals only; its flags are recomputed) as the surface the conditions act on
+  /// from now on. Reuses the buffers: no allocation when the size does not grow.
+  void replace_surface(const SurfaceSet& surface);
 
   /// Imposes every constraint at time t on `values`. Row of node n is n, or node_to_row[n] when
   /// given (constraints of nodes with row -1 are skipped).
@@ -59,12 +59,7 @@ class BoundaryConditions {
 
   /// Every (node, stress field) that a constraint overwrites (tractions, traction-free faces,
   /// roller shear), in no particular order.
-  std::vector<std::pair<std::int32_t, int>> constrained_stress() const {
-    std::vector<std::pair<std::int32_t, int>> pairs;
-    for (const Constraint& c : stress_constraints_)
-      pairs.emplace_back(c.node, c.field);
-    return pairs;
-  }
+  std::vector<std::pair<std::int32_t, int>> constrained_stress() const;
 
   /// True if velocity component `axis` of `node` is imposed.
   bool velocity_imposed(std::int32_t node, int axis) const {
@@ -75,20 +70,37 @@ class BoundaryConditions {
   struct Constraint {
     std::int32_t node;
     int field;
-    int function;                     // index into functions_
-    double scale;                     // value = scale * functions_[function](t)
-    bool plus_pore_pressure = false;  // + alpha p_w: a traction on the total stress (§5.1)
+    int function;  // index into functions_
+    double scale;  // value = scale * functions_[function](t)
+  };
+  /// A traction condition's load on one node: sigma·n = t(t) on the face of normal `normal`.
+  struct ImposedTraction {
+    std::int32_t node;
+    Vector3 normal;
+    std::array<int, 3> function;  // per global component, index into functions_; -1: not given
   };
   int add_function(const TimeFunction& f);
+  /// Marks the facets that velocity conditions act on: their imposed components are reactions,
+  /// and a facet whose normal velocity is imposed is not projected.
+  void classify(SurfaceSet& surface) const;
+  bool driven(std::int32_t node, const Vector3& normal) const;
+  StressTensor stress_at(const FieldArray& values, std::size_t row) const;
+  void store_stress(const StressTensor& sigma, FieldArray& values, std::size_t row) const;
+  std::optional<double> biot_pore_pressure(const FieldArray& values, std::size_t row) const;
+  void append_overwritten(std::int32_t node, const Vector3& normal, std::uint8_t components,
+                          std::vector<std::pair<std::int32_t, int>>& pairs) const;
 
+  int dimension_ = 1;
+  std::array<std::array<int, 3>, 3> stress_field_{};  // model field of sigma_ac, or -1
   std::vector<MirrorPlane> mirror_planes_;
   std::vector<std::uint8_t> mirror_axes_;
-  std::vector<std::vector<FaceNormal>> face_normals_;
   std::vector<std::uint8_t> velocity_axes_;
-  std::vector<std::uint8_t> projected_axes_;
+  std::vector<std::vector<Vector3>> driven_normals_;  // per node: faces of its velocity conditions
+  SurfaceSet surface_;
   std::vector<TimeFunction> functions_;
   std::vector<Constraint> pressure_constraints_;  // drained nodes, applied first
-  std::vector<Constraint> stress_constraints_;
+  std::vector<Constraint> roller_shear_;          // after the traction-free facets
+  std::vector<ImposedTraction> tractions_;        // then the loads, in the order written
   std::vector<std::int32_t> drained_nodes_;
   std::vector<int> drained_function_;
   int pore_pressure_field_ = -1;

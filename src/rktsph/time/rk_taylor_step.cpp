@@ -115,12 +115,8 @@ void RkTaylorStep::bind_operators(const Configuration& configuration) {
   const std::size_t ns = configuration.sph_nodes.size();
   const std::size_t nb = operators_.boundary_nodes.size();
   boundary_material_.clear();
-  projected_rows_.clear();
-  for (std::int32_t node : operators_.boundary_nodes) {
+  for (std::int32_t node : operators_.boundary_nodes)
     boundary_material_.push_back(nodes_.node_material[static_cast<std::size_t>(node)]);
-    if (conditions_.projected_axes(node))
-      projected_rows_.push_back(operators_.node_to_boundary_row[static_cast<std::size_t>(node)]);
-  }
   if (boundary_values_.point_count() != nb || boundary_values_.field_count() != nf) {
     boundary_values_ = FieldArray(nf, nb);
     boundary_start_ = FieldArray(nf, nb);
@@ -361,15 +357,15 @@ void RkTaylorStep::project_free_faces(const FieldArray& start, FieldArray& value
                                       bool boundary_rows) const {
   const int nf = model_.field_count();
   double start_values[32];
-  for (std::int32_t r : projected_rows_) {
+  const SurfaceSet& surface = conditions_.surface();
+  for (std::size_t k = 0; k < surface.size(); ++k) {
+    const std::int32_t node = surface.node[k];
+    const std::int32_t r = operators_.node_to_boundary_row[static_cast<std::size_t>(node)];
+    const SurfaceNormals normals = surface.projected_normals(k);
+    if (r < 0 || normals.count == 0) continue;
     const auto row = static_cast<std::size_t>(r);
-    const std::int32_t node = operators_.boundary_nodes[row];
     for (int f = 0; f < nf; ++f)
       start_values[f] = start(f, row);
-    SurfaceNormals normals;
-    const std::uint8_t axes = conditions_.projected_axes(node);
-    for (int a = 0; a < model_.dimension(); ++a)
-      if (axes & (1u << a)) normals.add_axis(a);
     model_.project_traction_free_increment(
         nodes_.node_material[static_cast<std::size_t>(node)], normals,
         std::span<const double>(start_values, static_cast<std::size_t>(nf)), values,

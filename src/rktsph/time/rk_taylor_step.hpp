@@ -102,7 +102,6 @@ class RkTaylorStep {
   HourglassStiffness hourglass_stiffness_;  // docs/theory.md §3.4
   StrainHourglassStiffness strain_hourglass_stiffness_;
   std::vector<std::int32_t> boundary_material_;
-  std::vector<std::int32_t> projected_rows_;
   std::vector<Parity> internal_parity_;      // boundary rows whose stress increments are projected
   std::vector<std::uint8_t> momentum_flux_;  // 1 for the fields whose gradient feeds the momentum
   std::vector<std::uint8_t> velocity_gradient_fields_;  // 1 for the gradient fields of v

@@ -1,0 +1,64 @@
+// The surface of the body at one instant (docs/theory.md §5.1): its nodes, each with one or more
+// facets (an outward unit normal, and how the stress on it is constrained). Lattice bodies build
+// it once from missing neighbours (lattice_surface); V2's free-surface detection will rebuild it
+// every step into the same buffers, so it is a structure of arrays that keeps its capacity.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "rktsph/geometry/node_sets.hpp"
+#include "rktsph/physics/surface_normals.hpp"
+
+namespace rktsph {
+
+using Vector3 = std::array<double, 3>;
+
+struct SurfaceSet {
+  // Per surface node k, in increasing node id (one node may carry several facets: edges, corners).
+  std::vector<std::int32_t> node;
+  std::vector<std::int32_t> first_facet;  ///< facets of node k: [first_facet[k], first_facet[k+1])
+
+  // Per facet f.
+  std::array<std::vector<double>, 3> normal;  ///< outward unit normal, components x, y, z
+  /// Bit c: component c of sigma·n is a reaction to an imposed velocity, not a traction (the
+  /// facet lies on the face a velocity condition acts on).
+  std::vector<std::uint8_t> reactions;
+  /// 1: the facet's normal velocity is free, so the stress increment is projected traction-free
+  /// along it (eq. 5.1); 0: the normal velocity is imposed.
+  std::vector<std::uint8_t> projected;
+
+  std::size_t size() const { return node.size(); }
+  std::size_t facet_count() const { return reactions.size(); }
+  std::int32_t facets_begin(std::size_t k) const { return first_facet[k]; }
+  std::int32_t facets_end(std::size_t k) const { return first_facet[k + 1]; }
+  Vector3 facet_normal(std::int32_t f) const {
+    const auto i = static_cast<std::size_t>(f);
+    return {normal[0][i], normal[1][i], normal[2][i]};
+  }
+
+  /// Empties the set and keeps its buffers.
+  void clear();
+  /// Starts surface node `id`; the facets added next belong to it.
+  void add_node(std::int32_t id);
+  /// Adds a facet of outward unit normal `unit_normal` to the last node, traction-free.
+  void add_facet(const Vector3& unit_normal);
+  /// Drops the last node if it received no facet.
+  void drop_node_without_facets();
+
+  /// The normals along which node k's stress increment is projected, in facet order; a facet
+  /// parallel to one already listed (a one-node-wide strip: -n and +n) is the same constraint and
+  /// is listed once.
+  SurfaceNormals projected_normals(std::size_t k) const;
+};
+
+/// The faces of a lattice body: for every node, the lattice directions +-e_a with no neighbour
+/// node and no mirror plane through the node (bit a of mirror_axes[node]), in the order -x, +x,
+/// -y, +y. Every facet starts traction-free and projected; the boundary conditions then mark the
+/// facets their velocity conditions act on (BoundaryConditions::classify).
+void lattice_surface(const NodeSets& nodes, std::span<const std::uint8_t> mirror_axes,
+                     SurfaceSet& surface);
+
+}  // namespace rktsph

@@ -1,0 +1,123 @@
+// The surface set: a lattice's faces from missing neighbours, rebuilt into the same buffers, and
+// the boundary conditions acting on a surface whose normals are not lattice axes.
+#include "rktsph/boundary/surface_set.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "../support/lattices.hpp"
+#include "rktsph/boundary/boundary_conditions.hpp"
+#include "rktsph/case/case_reader.hpp"
+#include "rktsph/simulation/simulation.hpp"
+
+namespace rktsph {
+namespace {
+
+TEST(SurfaceSet, LatticeFacesAreTheMissingNeighbours) {
+  const NodeSets nodes = test::rectangle_lattice(2.0, 1.0, 1.0);  // 3 x 2 nodes, all on the surface
+  std::vector<std::uint8_t> mirror_axes(nodes.sph_nodes.size(), 0);
+  SurfaceSet surface;
+  lattice_surface(nodes, mirror_axes, surface);
+  ASSERT_EQ(surface.size(), 6u);
+  EXPECT_EQ(surface.facet_count(), 2u * 4u + 2u * 2u - 2u);  // 4 corners x 2, 2 edge middles x 1
+  const std::int32_t corner = nodes.node_at({0, 0, 0});
+  const auto k = static_cast<std::size_t>(
+      std::find(surface.node.begin(), surface.node.end(), corner) - surface.node.begin());
+  ASSERT_EQ(surface.facets_end(k) - surface.facets_begin(k), 2);
+  EXPECT_EQ(surface.facet_normal(surface.facets_begin(k)), (Vector3{-1.0, 0.0, 0.0}));
+  EXPECT_EQ(surface.facet_normal(surface.facets_begin(k) + 1), (Vector3{0.0, -1.0, 0.0}));
+
+  // A mirror plane y = 0 closes the bottom faces.
+  for (std::int32_t i = 0; i < 3; ++i)
+    mirror_axes[static_cast<std::size_t>(nodes.node_at({i, 0, 0}))] = 0b10;
+  lattice_surface(nodes, mirror_axes, surface);
+  EXPECT_EQ(surface.facet_count(), 10u - 3u);
+}
+
+TEST(SurfaceSet, RebuildingWithTheSameSizeDoesNotAllocate) {
+  const NodeSets nodes = test::rectangle_lattice(4.0, 3.0, 1.0);
+  const std::vector<std::uint8_t> mirror_axes(nodes.sph_nodes.size(), 0);
+  SurfaceSet surface;
+  lattice_surface(nodes, mirror_axes, surface);
+  const double* normals = surface.normal[0].data();
+  const std::int32_t* ids = surface.node.data();
+  lattice_surface(nodes, mirror_axes, surface);
+  EXPECT_EQ(surface.normal[0].data(), normals);
+  EXPECT_EQ(surface.node.data(), ids);
+}
+
+TEST(SurfaceSet, OppositeFacetsAreOneProjection) {
+  SurfaceSet surface;
+  surface.clear();
+  surface.add_node(7);
+  surface.add_facet({-1.0, 0.0, 0.0});
+  surface.add_facet({1.0, 0.0, 0.0});
+  surface.add_facet({0.0, 1.0, 0.0});
+  const SurfaceNormals normals = surface.projected_normals(0);
+  ASSERT_EQ(normals.count, 2);
+  EXPECT_EQ(normals.normal[0], (Vector3{-1.0, 0.0, 0.0}));
+  EXPECT_EQ(normals.normal[1], (Vector3{0.0, 1.0, 0.0}));
+  surface.projected[2] = 0;
+  EXPECT_EQ(surface.projected_normals(0).count, 1);
+}
+
+const char* kBlock = R"(
+name: block
+dimension: 2
+geometry:
+  spacing: 1.0
+  shapes: [{rectangle: {min: [0, 0], max: [4, 3]}, material: soil}]
+materials:
+  soil: {model: linear_elastic, density: 2000.0, young_modulus: 1.0e7, poisson_ratio: 0.3}
+boundary_conditions:
+  - {group: xmin, fixed: true}
+time: {end: 0.01}
+)";
+
+TEST(SurfaceSet, ConditionsOnATiltedSurfaceMakeItTractionFree) {
+  Simulation simulation(read_case_text(kBlock, "block.yaml"));
+  BoundaryConditions conditions(simulation.description(), simulation.nodes(), simulation.groups(),
+                                simulation.model());
+  const std::int32_t free_node = simulation.nodes().node_at({4, 1, 0});
+  const std::int32_t fixed_node = simulation.nodes().node_at({0, 1, 0});
+  const double c30 = std::cos(std::numbers::pi / 6.0), s30 = std::sin(std::numbers::pi / 6.0);
+  SurfaceSet tilted;
+  tilted.clear();
+  tilted.add_node(fixed_node);
+  tilted.add_facet({-1.0, 0.0, 0.0});
+  tilted.add_node(free_node);
+  tilted.add_facet({c30, s30, 0.0});
+  conditions.replace_surface(tilted);
+  // The fixed face's stress is a reaction; the tilted facet is free and projected.
+  EXPECT_EQ(conditions.surface().reactions[0], 0b11);
+  EXPECT_EQ(conditions.surface().projected[0], 0);
+  EXPECT_EQ(conditions.surface().reactions[1], 0);
+  EXPECT_EQ(conditions.surface().projected[1], 1);
+
+  const PhysicsModel& model = simulation.model();
+  FieldArray fields(model.field_count(), simulation.nodes().sph_nodes.size());
+  const auto i = static_cast<std::size_t>(free_node);
+  const int xx = model.stress_field(0, 0), yy = model.stress_field(1, 1),
+            xy = model.stress_field(0, 1), zz = model.stress_field(2, 2);
+  fields(xx, i) = 3.0e4;
+  fields(yy, i) = -2.0e4;
+  fields(xy, i) = 1.0e4;
+  fields(zz, i) = 5.0e3;
+  const double tangential =  // t·sigma·t with t = (-sin 30, cos 30)
+      s30 * s30 * 3.0e4 - 2.0 * s30 * c30 * 1.0e4 + c30 * c30 * -2.0e4;
+  conditions.apply(0.0, fields);
+  EXPECT_NEAR(fields(xx, i) * c30 + fields(xy, i) * s30, 0.0, 1e-11);
+  EXPECT_NEAR(fields(xy, i) * c30 + fields(yy, i) * s30, 0.0, 1e-11);
+  EXPECT_NEAR(
+      s30 * s30 * fields(xx, i) - 2.0 * s30 * c30 * fields(xy, i) + c30 * c30 * fields(yy, i),
+      tangential, 1e-11 * 3.0e4);
+  EXPECT_EQ(fields(zz, i), 5.0e3);
+  // The stress the hourglass stiffness must treat as imposed follows the surface.
+  const auto pairs = conditions.constrained_stress();
+  EXPECT_EQ(std::count(pairs.begin(), pairs.end(), std::pair<std::int32_t, int>{free_node, xy}), 1);
+}
+
+}  // namespace
+}  // namespace rktsph
