@@ -40,11 +40,13 @@ double static_stress_error(const std::string& coupling, double* xi_dt) {
   simulation.run();
   const double rho_g = 2000.0 * 9.81, length = 10.0;
   double error = 0.0, base_ratio = 0.0;
+  const int stress_xx = simulation.model().stress_field(0, 0);
   for (std::size_t i = 0; i < simulation.nodes().sph_nodes.size(); ++i) {
     const double x = simulation.nodes().sph_nodes.position[0][i];
     const double exact = -rho_g * (length - x);
-    error = std::max(error, std::abs(simulation.state().fields(1, i) - exact) / (rho_g * length));
-    if (x == 0.0) base_ratio = simulation.state().fields(1, i) / exact;
+    const double stress = simulation.state().fields(stress_xx, i);
+    error = std::max(error, std::abs(stress - exact) / (rho_g * length));
+    if (x == 0.0) base_ratio = stress / exact;
   }
   *xi_dt = 20.0 * simulation.time_step();
   return coupling == "additive" ? 1.0 - base_ratio : error;

@@ -8,32 +8,32 @@
 namespace rktsph {
 
 namespace {
-constexpr int kMaxStress = 4;
 constexpr int kMaxInternal = 8;
+constexpr int kMaxNormals = SurfaceNormals::kMax;
 
-struct StressComponent {
-  int i, j;
-};
-
-std::vector<StressComponent> carried_stress(Kinematics kinematics) {
-  switch (kinematics) {
-    case Kinematics::Bar1D:
-      return {{0, 0}};
-    case Kinematics::PlaneStrain:
-      return {{0, 0}, {1, 1}, {0, 1}, {2, 2}};
-    case Kinematics::PlaneStress:
-      return {{0, 0}, {1, 1}, {0, 1}};
+// Solves the count x count system a x = b (count <= 3) by Cramer's rule.
+void solve_small(const double a[kMaxNormals][kMaxNormals], const double* b, int count, double* x) {
+  if (count == 1) {
+    x[0] = b[0] / a[0][0];
+  } else if (count == 2) {
+    const double det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+    x[0] = (a[1][1] * b[0] - a[0][1] * b[1]) / det;
+    x[1] = (a[0][0] * b[1] - a[1][0] * b[0]) / det;
+  } else {
+    auto det3 = [](const double m[3][3]) {
+      return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+             m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+             m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    };
+    const double det = det3(a);
+    for (int k = 0; k < 3; ++k) {
+      double replaced[3][3];
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          replaced[r][c] = c == k ? b[r] : a[r][c];
+      x[k] = det3(replaced) / det;
+    }
   }
-  return {};
-}
-
-// Index of a symmetric tensor component in SymmetricTensor order (xx, yy, zz, xy, yz, zx).
-int tensor_slot(int i, int j) {
-  if (i == j) return i;
-  const int lo = std::min(i, j), hi = std::max(i, j);
-  if (lo == 0 && hi == 1) return 3;
-  if (lo == 1 && hi == 2) return 4;
-  return 5;
 }
 }  // namespace
 
@@ -48,42 +48,49 @@ double Loads::damping_at(double t) const {
 
 DrySolid::DrySolid(Kinematics kinematics, std::vector<std::unique_ptr<Material>> materials,
                    Loads loads, SourceIntegration integration)
+    : DrySolid(kinematics, std::move(materials), loads, integration, false) {}
+
+DrySolid::DrySolid(Kinematics kinematics, std::vector<std::unique_ptr<Material>> materials,
+                   Loads loads, SourceIntegration integration, bool pore_pressure)
     : kinematics_(kinematics),
+      layout_(kinematic_assumption(kinematics), pore_pressure),
       materials_(std::move(materials)),
       loads_(loads),
       integration_(integration) {
-  const int d = dimension();
-  for (int a = 0; a < d; ++a) {
-    names_.push_back(std::string("velocity_") + axis_letter(a));
-    parities_.push_back(vector_parity(a));
-  }
-  for (const StressComponent& c : carried_stress(kinematics_)) {
-    stress_slot_[names_.size() - static_cast<std::size_t>(d)] = tensor_slot(c.i, c.j);
-    names_.push_back(std::string("stress_") + axis_letter(c.i) + axis_letter(c.j));
-    parities_.push_back(tensor_parity(c.i, c.j));
-  }
-  stress_count_ = static_cast<int>(names_.size()) - d;
-  for (const auto& material : materials_)
+  const KinematicAssumption& assumption = layout_.kinematics();
+  for (const auto& material : materials_) {
+    stiffness_.push_back(assumption.stiffness(material->elastic()));
     if (material->internal_count() > internal_count_) {
       internal_count_ = material->internal_count();
       internal_names_ = material->internal_names();
     }
-}
-
-int DrySolid::stress_field(int i, int j) const {
-  const int slot = tensor_slot(i, j);
-  for (int c = 0; c < stress_count_; ++c)
-    if (stress_slot_[c] == slot) return dimension() + c;
-  return -1;
+  }
+  const int d = dimension();
+  for (int c = 0; c < layout_.stress_count(); ++c) {
+    const auto k = static_cast<std::size_t>(c);
+    const TensorComponent component = assumption.stress_component(c);
+    stress_slot_[k] = assumption.stress_slot(c);
+    shear_factor_[k] = component.i == component.j ? 1.0 : 2.0;
+    const StrainRateTerms terms = assumption.strain_rate_terms(c);
+    strain_rate_gradients_[k].count = terms.count;
+    for (int t = 0; t < terms.count; ++t) {
+      const VelocityGradientTerm term = terms.term[static_cast<std::size_t>(t)];
+      strain_rate_gradients_[k].field[static_cast<std::size_t>(t)] =
+          layout_.gradient(layout_.velocity(term.velocity), term.axis);
+    }
+  }
+  // R_v = (1/rho) sum_b d sigma_ab / dx_b (docs/theory.md eq. 1.4): every in-plane stress is
+  // carried.
+  for (int a = 0; a < d; ++a)
+    for (int b = 0; b < d; ++b)
+      divergence_gradients_[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] =
+          layout_.gradient(layout_.stress(a, b), b);
 }
 
 double DrySolid::wave_speed(std::int32_t material) const {
-  const Material& m = *materials_[static_cast<std::size_t>(material)];
-  const ElasticConstants& e = m.elastic();
-  const double modulus = kinematics_ == Kinematics::Bar1D         ? e.young_modulus
-                         : kinematics_ == Kinematics::PlaneStrain ? e.constrained_modulus()
-                                                                  : e.plane_stress_modulus();
-  return std::sqrt(modulus / m.density());
+  // The P-wave modulus of the kinematics: D_xx,xx (E, lambda + 2G or E').
+  const int xx = layout_.kinematics().carried_index(0, 0);
+  return std::sqrt(stiffness(material)(xx, xx) / density(material));
 }
 
 double DrySolid::max_wave_speed() const {
@@ -94,11 +101,11 @@ double DrySolid::max_wave_speed() const {
 }
 
 std::array<double, 3> DrySolid::in_plane_moduli(std::int32_t material) const {
-  const ElasticConstants& e = materials_[static_cast<std::size_t>(material)]->elastic();
-  if (kinematics_ == Kinematics::PlaneStress)
-    return {e.plane_stress_modulus(), e.poisson_ratio * e.plane_stress_modulus(),
-            e.shear_modulus()};
-  return {e.constrained_modulus(), e.lame_lambda(), e.shear_modulus()};
+  const KinematicAssumption& assumption = layout_.kinematics();
+  const StiffnessMatrix& d = stiffness(material);
+  const int xx = assumption.carried_index(0, 0), yy = assumption.carried_index(1, 1),
+            xy = assumption.carried_index(0, 1);
+  return {d(xx, xx), yy < 0 ? 0.0 : d(xx, yy), xy < 0 ? 0.0 : d(xy, xy)};
 }
 
 double DrySolid::divergence_bound(int field) const {
@@ -106,52 +113,38 @@ double DrySolid::divergence_bound(int field) const {
   if (field < dimension()) return 10.0 * max_wave_speed();
   double modulus = 0.0;
   for (const auto& material : materials_)
-    modulus = std::max(modulus, material->elastic().constrained_modulus());
+    modulus = std::max(modulus, elastic_stiffness(material->elastic())(0, 0));
   return 10.0 * modulus;
+}
+
+void DrySolid::strain_rate(const FieldArray& gradient, std::int64_t i, double* strain_rate) const {
+  for (int c = 0; c < layout_.stress_count(); ++c) {
+    const StrainRateGradients& terms = strain_rate_gradients_[static_cast<std::size_t>(c)];
+    double rate = terms.count > 0 ? gradient.field(terms.field[0])[i] : 0.0;
+    if (terms.count > 1) rate += gradient.field(terms.field[1])[i];
+    strain_rate[c] = rate;
+  }
 }
 
 void DrySolid::flux_rate(std::span<const std::int32_t> material, const FieldArray& gradient,
                          FieldArray& rate) const {
   const auto n = static_cast<std::int64_t>(material.size());
-  const int d = dimension();
-  // Gradient of field f along axis c is gradient field f * d + c (docs/theory.md §2.2).
-  auto grad = [&](int f, int c, std::int64_t i) { return gradient.field(f * d + c)[i]; };
-  switch (kinematics_) {
-    case Kinematics::Bar1D:
+  const int d = dimension(), ns = layout_.stress_count();
 #pragma omp parallel for schedule(static) if (n > kParallelThreshold)
-      for (std::int64_t i = 0; i < n; ++i) {
-        const Material& m = *materials_[material[i]];
-        rate.field(0)[i] = grad(1, 0, i) / m.density();
-        rate.field(1)[i] = m.elastic().young_modulus * grad(0, 0, i);
-      }
-      break;
-    case Kinematics::PlaneStrain:
-    case Kinematics::PlaneStress: {
-      const bool plane_strain = kinematics_ == Kinematics::PlaneStrain;
-#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
-      for (std::int64_t i = 0; i < n; ++i) {
-        const Material& m = *materials_[material[i]];
-        const ElasticConstants& e = m.elastic();
-        const double strain_xx = grad(0, 0, i), strain_yy = grad(1, 1, i);
-        const double strain_xy = 0.5 * (grad(0, 1, i) + grad(1, 0, i));
-        rate.field(0)[i] = (grad(2, 0, i) + grad(4, 1, i)) / m.density();
-        rate.field(1)[i] = (grad(4, 0, i) + grad(3, 1, i)) / m.density();
-        const double shear = e.shear_modulus();
-        if (plane_strain) {
-          const double lambda = e.lame_lambda();
-          rate.field(2)[i] = (lambda + 2.0 * shear) * strain_xx + lambda * strain_yy;
-          rate.field(3)[i] = lambda * strain_xx + (lambda + 2.0 * shear) * strain_yy;
-          rate.field(4)[i] = 2.0 * shear * strain_xy;
-          rate.field(5)[i] = lambda * (strain_xx + strain_yy);
-        } else {
-          const double modulus = e.plane_stress_modulus(), nu = e.poisson_ratio;
-          rate.field(2)[i] = modulus * (strain_xx + nu * strain_yy);
-          rate.field(3)[i] = modulus * (nu * strain_xx + strain_yy);
-          rate.field(4)[i] = 2.0 * shear * strain_xy;
-        }
-      }
-      break;
+  for (std::int64_t i = 0; i < n; ++i) {
+    const double density = materials_[static_cast<std::size_t>(material[i])]->density();
+    for (int a = 0; a < d; ++a) {
+      const auto& divergence_terms = divergence_gradients_[static_cast<std::size_t>(a)];
+      double divergence = gradient.field(divergence_terms[0])[i];
+      for (int b = 1; b < d; ++b)
+        divergence += gradient.field(divergence_terms[static_cast<std::size_t>(b)])[i];
+      rate.field(layout_.velocity(a))[i] = divergence / density;
     }
+    double strain[kMaxStress], stress_rate[kMaxStress];
+    strain_rate(gradient, i, strain);
+    stiffness_[static_cast<std::size_t>(material[i])].multiply(strain, stress_rate);
+    for (int c = 0; c < ns; ++c)
+      rate.field(layout_.stress_component(c))[i] = stress_rate[c];
   }
 }
 
@@ -183,44 +176,35 @@ void DrySolid::advance_velocity(double rate_v[3], double time, double interval, 
       v[a] += interval * rate_v[a];
 }
 
-void DrySolid::stress_source(const Material& material, const double* sigma, const double* kappa,
-                             double* sigma_rate, double* kappa_rate) const {
+void DrySolid::stress_source(const Material& material, const StiffnessMatrix& stiffness,
+                             const double* sigma, const double* kappa, double* sigma_rate,
+                             double* kappa_rate) const {
+  const int ns = layout_.stress_count();
   SymmetricTensor stress{};
-  for (int c = 0; c < stress_count_; ++c)
-    stress[stress_slot_[c]] = sigma[c];
+  for (int c = 0; c < ns; ++c)
+    stress[static_cast<std::size_t>(stress_slot_[static_cast<std::size_t>(c)])] = sigma[c];
   SymmetricTensor strain_rate{};
   const int nk = material.internal_count();
   material.viscoplastic_rate(stress, std::span<const double>(kappa, nk), strain_rate,
                              std::span<double>(kappa_rate, nk));
-  const ElasticConstants& e = material.elastic();
-  const double shear = e.shear_modulus();
-  switch (kinematics_) {
-    case Kinematics::Bar1D:
-      sigma_rate[0] = -e.young_modulus * strain_rate[0];
-      break;
-    case Kinematics::PlaneStrain: {
-      const double lambda = e.lame_lambda();
-      const double trace = strain_rate[0] + strain_rate[1] + strain_rate[2];
-      sigma_rate[0] = -(lambda * trace + 2.0 * shear * strain_rate[0]);
-      sigma_rate[1] = -(lambda * trace + 2.0 * shear * strain_rate[1]);
-      sigma_rate[2] = -2.0 * shear * strain_rate[3];
-      sigma_rate[3] = -(lambda * trace + 2.0 * shear * strain_rate[2]);
-      break;
-    }
-    case Kinematics::PlaneStress: {
-      const double modulus = e.plane_stress_modulus(), nu = e.poisson_ratio;
-      sigma_rate[0] = -modulus * (strain_rate[0] + nu * strain_rate[1]);
-      sigma_rate[1] = -modulus * (nu * strain_rate[0] + strain_rate[1]);
-      sigma_rate[2] = -2.0 * shear * strain_rate[3];
-      break;
-    }
+  // The strains of the stress-free components are condensed into the stiffness, so only the
+  // carried components of eps_dot^vp enter (engineering shear).
+  double plastic[kMaxStress];
+  for (int c = 0; c < ns; ++c) {
+    const auto k = static_cast<std::size_t>(c);
+    plastic[c] = shear_factor_[k] * strain_rate[static_cast<std::size_t>(stress_slot_[k])];
   }
+  double relaxation[kMaxStress] = {};
+  stiffness.multiply(plastic, relaxation);
+  for (int c = 0; c < ns; ++c)
+    sigma_rate[c] = -relaxation[c];
 }
 
-void DrySolid::advance_stress(const Material& material, const double* rate_sigma, double time,
-                              double interval, double* sigma, double* kappa) const {
+void DrySolid::advance_stress(const Material& material, const StiffnessMatrix& stiffness,
+                              const double* rate_sigma, double time, double interval, double* sigma,
+                              double* kappa) const {
   (void)time;  // the stress source is autonomous; kept for models with time-dependent sources
-  const int ns = stress_count_;
+  const int ns = layout_.stress_count();
   if (material.is_elastic()) {
     for (int k = 0; k < ns; ++k)
       sigma[k] += interval * rate_sigma[k];
@@ -229,14 +213,14 @@ void DrySolid::advance_stress(const Material& material, const double* rate_sigma
   // (sigma, kappa)' = R_sigma - D^e : eps_dot^vp, kappa_dot: RK4 with sub-steps sized by the
   // relaxation rate of the source (docs/theory.md §2.1, sub-step rule).
   const int nk = material.internal_count();
-  SymmetricTensor stress{};
-  for (int c = 0; c < ns; ++c)
-    stress[stress_slot_[c]] = sigma[c];
+  SymmetricTensor stress{}, predictor{};
+  for (int c = 0; c < ns; ++c) {
+    const auto slot = static_cast<std::size_t>(stress_slot_[static_cast<std::size_t>(c)]);
+    stress[slot] = sigma[c];
+    predictor[slot] = sigma[c] + interval * rate_sigma[c];
+  }
   // Both ends of the straight path sigma + t R inside the (convex) elastic domain: no flow at all
   // within the step, so the update is exactly elastic.
-  SymmetricTensor predictor{};
-  for (int c = 0; c < ns; ++c)
-    predictor[stress_slot_[c]] = sigma[c] + interval * rate_sigma[c];
   const std::span<const double> kappa_view(kappa, static_cast<std::size_t>(nk));
   if (integration_.frozen_flux && !material.flows(stress, kappa_view) &&
       !material.flows(predictor, kappa_view)) {
@@ -247,18 +231,18 @@ void DrySolid::advance_stress(const Material& material, const double* rate_sigma
   // The source may switch on within the step (an elastic state pushed beyond the yield surface by
   // the flux): size the sub-steps by the larger stiffness of the start and of the elastic
   // predictor.
-  const double stiffness = std::max(material.source_stiffness(stress, kappa_view),
-                                    material.source_stiffness(predictor, kappa_view));
-  const int substeps =
-      std::clamp(static_cast<int>(std::ceil(interval * stiffness / integration_.substep_factor)), 1,
-                 integration_.max_substeps);
+  const double relaxation_rate = std::max(material.source_stiffness(stress, kappa_view),
+                                          material.source_stiffness(predictor, kappa_view));
+  const int substeps = std::clamp(
+      static_cast<int>(std::ceil(interval * relaxation_rate / integration_.substep_factor)), 1,
+      integration_.max_substeps);
   const double delta = interval / substeps;
   const int n = ns + nk;
   double y[kMaxStress + kMaxInternal], stage[kMaxStress + kMaxInternal];
   double k[4][kMaxStress + kMaxInternal];
   const bool frozen = integration_.frozen_flux;
   auto evaluate = [&](const double* state, double* slope) {
-    stress_source(material, state, state + ns, slope, slope + ns);
+    stress_source(material, stiffness, state, state + ns, slope, slope + ns);
     if (frozen)
       for (int c = 0; c < ns; ++c)
         slope[c] += rate_sigma[c];
@@ -291,108 +275,106 @@ void DrySolid::advance(std::span<const std::int32_t> material, const FieldArray&
                        AdvancedFields part) const {
   const auto n = static_cast<std::int64_t>(material.size());
   const int d = dimension();
-  const int ns = stress_count_;
+  const int ns = layout_.stress_count();
   const int nk = internal_count_;
 #pragma omp parallel for schedule(static) if (n > kParallelThreshold)
   for (std::int64_t i = 0; i < n; ++i) {
-    const Material& m = *materials_[material[i]];
+    const auto material_index = static_cast<std::size_t>(material[i]);
     if (part != AdvancedFields::Others) {
       double v[3] = {}, rate_v[3] = {};
       for (int a = 0; a < d; ++a) {
-        v[a] = values.field(a)[i];
-        rate_v[a] = rate.field(a)[i];
+        v[a] = values.field(layout_.velocity(a))[i];
+        rate_v[a] = rate.field(layout_.velocity(a))[i];
       }
       advance_velocity(rate_v, time, interval, v);
       for (int a = 0; a < d; ++a)
-        values.field(a)[i] = v[a];
+        values.field(layout_.velocity(a))[i] = v[a];
     }
     if (part == AdvancedFields::Velocity) continue;
 
     double sigma[kMaxStress], rate_sigma[kMaxStress], kappa[kMaxInternal] = {};
     for (int c = 0; c < ns; ++c) {
-      sigma[c] = values.field(d + c)[i];
-      rate_sigma[c] = rate.field(d + c)[i];
+      sigma[c] = values.field(layout_.stress_component(c))[i];
+      rate_sigma[c] = rate.field(layout_.stress_component(c))[i];
     }
     for (int c = 0; c < nk; ++c)
       kappa[c] = internal.field(c)[i];
-    advance_stress(m, rate_sigma, time, interval, sigma, kappa);
+    advance_stress(*materials_[material_index], stiffness_[material_index], rate_sigma, time,
+                   interval, sigma, kappa);
     for (int c = 0; c < ns; ++c)
-      values.field(d + c)[i] = sigma[c];
+      values.field(layout_.stress_component(c))[i] = sigma[c];
     for (int c = 0; c < nk; ++c)
       internal.field(c)[i] = kappa[c];
+  }
+}
+
+void DrySolid::normal_strain(const std::array<double, 3>& normal, double* strain) const {
+  // n (x) n with engineering shear strains: n_i n_j on the diagonal, 2 n_i n_j off it, so that
+  // n . sigma . n is the plain dot product of this strain with the carried stresses.
+  for (int c = 0; c < layout_.stress_count(); ++c) {
+    const TensorComponent component = layout_.kinematics().stress_component(c);
+    strain[c] = shear_factor_[static_cast<std::size_t>(c)] *
+                normal[static_cast<std::size_t>(component.i)] *
+                normal[static_cast<std::size_t>(component.j)];
   }
 }
 
 void DrySolid::project_traction_free_increment(std::int32_t material, const SurfaceNormals& normals,
                                                std::span<const double> start, FieldArray& values,
                                                std::size_t i) const {
-  // Lattice faces only, for now: the normals are coordinate axes.
-  std::uint8_t normal_axes = 0;
-  for (int r = 0; r < normals.count; ++r)
-    for (int a = 0; a < 3; ++a)
-      if (normals.normal[static_cast<std::size_t>(r)][static_cast<std::size_t>(a)] != 0.0)
-        normal_axes |= static_cast<std::uint8_t>(1u << a);
-  // Normal strain corrections delta_eps_n (n in the constrained set N) solve
-  //   sum_m D_nm delta_eps_m = -(sigma_nn - sigma_nn^start),  n, m in N,
-  // and every carried normal stress then moves by sum_m D_km delta_eps_m (docs/theory.md §5.1).
-  const ElasticConstants& e = materials_[material]->elastic();
-  const int d = dimension();
-  int axes[2], count = 0;
-  for (int a = 0; a < d; ++a)
-    if (normal_axes & (1u << a)) axes[count++] = a;
+  // A normal strain c_r n_r (x) n_r along each unit normal n_r, with c solving
+  //   sum_m (n_r (x) n_r : D : n_m (x) n_m) c_m = -n_r . (sigma - sigma_start) . n_r,
+  // keeps every normal traction n_r . sigma . n_r at its start value; every carried stress then
+  // moves by D : (sum_m c_m n_m (x) n_m) (docs/theory.md eq. 5.1).
+  const int count = normals.count;
   if (count == 0) return;
-  auto normal_index = [&](int a) { return stress_field(a, a); };
-  auto stiffness = [&](int k, int m) {  // D_km between normal components k and m
-    switch (kinematics_) {
-      case Kinematics::Bar1D:
-        return e.young_modulus;
-      case Kinematics::PlaneStrain:
-        return e.lame_lambda() + (k == m ? 2.0 * e.shear_modulus() : 0.0);
-      case Kinematics::PlaneStress:
-        return e.plane_stress_modulus() * (k == m ? 1.0 : e.poisson_ratio);
-    }
-    return 0.0;
-  };
-  double residual[2], correction[2];
+  const int ns = layout_.stress_count();
+  double strain[kMaxNormals][kMaxStress], stress[kMaxNormals][kMaxStress];
   for (int r = 0; r < count; ++r) {
-    const int f = normal_index(axes[r]);
-    residual[r] = -(values(f, i) - start[static_cast<std::size_t>(f)]);
+    normal_strain(normals.normal[static_cast<std::size_t>(r)], strain[r]);
+    stiffness(material).multiply(strain[r], stress[r]);
   }
-  if (count == 1) {
-    correction[0] = residual[0] / stiffness(axes[0], axes[0]);
-  } else {
-    const double a = stiffness(axes[0], axes[0]), b = stiffness(axes[0], axes[1]),
-                 c = stiffness(axes[1], axes[0]), dd = stiffness(axes[1], axes[1]);
-    const double det = a * dd - b * c;
-    correction[0] = (dd * residual[0] - b * residual[1]) / det;
-    correction[1] = (a * residual[1] - c * residual[0]) / det;
+  auto dot = [ns](const double* a, const double* b) {
+    double sum = 0.0;
+    for (int c = 0; c < ns; ++c)
+      sum += a[c] * b[c];
+    return sum;
+  };
+  double increment[kMaxStress];
+  for (int c = 0; c < ns; ++c) {
+    const int f = layout_.stress_component(c);
+    increment[c] = values(f, i) - start[static_cast<std::size_t>(f)];
   }
-  const int normal_components = kinematics_ == Kinematics::PlaneStrain ? 3 : d;
-  for (int k = 0; k < normal_components; ++k) {
-    const int f = normal_index(k);
-    for (int r = 0; r < count; ++r)
-      values(f, i) += stiffness(k, axes[r]) * correction[r];
+  double system[kMaxNormals][kMaxNormals], residual[kMaxNormals], correction[kMaxNormals];
+  for (int r = 0; r < count; ++r) {
+    residual[r] = -dot(strain[r], increment);
+    for (int m = 0; m < count; ++m)
+      system[r][m] = dot(strain[r], stress[m]);
   }
+  solve_small(system, residual, count, correction);
+  for (int c = 0; c < ns; ++c)
+    for (int m = 0; m < count; ++m)
+      values(layout_.stress_component(c), i) += stress[m][c] * correction[m];
 }
 
 void DrySolid::add_artificial_viscosity(std::span<const std::int32_t> material,
                                         const FieldArray& gradient, double alpha_dx,
                                         FieldArray& values) const {
   const auto n = static_cast<std::int64_t>(material.size());
-  const int d = dimension();
-  const int xx = stress_field(0, 0), yy = stress_field(1, 1), xy = stress_field(0, 1);
+  const int ns = layout_.stress_count();
   const double c = max_wave_speed();
 #pragma omp parallel for schedule(static) if (n > kParallelThreshold)
   for (std::int64_t i = 0; i < n; ++i) {
-    // q = alpha rho c_p dx eps_dot (docs/theory.md §2.7); c_p of the stiffest material keeps the
+    // q = alpha rho c_p dx eps_dot (docs/theory.md §2.7) on every carried component (tensor
+    // strain rate, eps = gamma / 2 off the diagonal); c_p of the stiffest material keeps the
     // coefficient uniform across material interfaces.
-    const double viscosity = alpha_dx * materials_[material[i]]->density() * c;
-    values.field(xx)[i] += viscosity * gradient.field(0)[i];
-    if (d >= 2) {
-      values.field(yy)[i] += viscosity * gradient.field(1 * d + 1)[i];
-      values.field(xy)[i] +=
-          viscosity * 0.5 * (gradient.field(0 * d + 1)[i] + gradient.field(1 * d + 0)[i]);
-    }
+    const double viscosity =
+        alpha_dx * materials_[static_cast<std::size_t>(material[i])]->density() * c;
+    double strain[kMaxStress];
+    strain_rate(gradient, i, strain);
+    for (int k = 0; k < ns; ++k)
+      values.field(layout_.stress_component(k))[i] +=
+          viscosity * (strain[k] / shear_factor_[static_cast<std::size_t>(k)]);
   }
 }
 

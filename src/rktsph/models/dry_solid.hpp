@@ -11,11 +11,11 @@
 
 #include "rktsph/case/case_description.hpp"
 #include "rktsph/materials/material.hpp"
+#include "rktsph/physics/field_layout.hpp"
+#include "rktsph/physics/kinematics/kinematics.hpp"
 #include "rktsph/physics/physics_model.hpp"
 
 namespace rktsph {
-
-enum class Kinematics { Bar1D, PlaneStrain, PlaneStress };
 
 /// Body force and mass damping, evaluated in time (docs/theory.md §1.2, eq. 1.1).
 struct Loads {
@@ -46,14 +46,15 @@ class DrySolid : public PhysicsModel {
   DrySolid(Kinematics kinematics, std::vector<std::unique_ptr<Material>> materials, Loads loads,
            SourceIntegration integration);
 
-  int dimension() const override { return kinematics_ == Kinematics::Bar1D ? 1 : 2; }
-  int field_count() const override { return static_cast<int>(names_.size()); }
-  const std::vector<std::string>& field_names() const override { return names_; }
-  std::span<const Parity> parities() const override { return parities_; }
+  int dimension() const override { return layout_.dimension(); }
+  int field_count() const override { return layout_.field_count(); }
+  const std::vector<std::string>& field_names() const override { return layout_.names(); }
+  std::span<const Parity> parities() const override { return layout_.parities(); }
   int internal_count() const override { return internal_count_; }
   const std::vector<std::string>& internal_names() const override { return internal_names_; }
-  int velocity_field(int axis) const override { return axis < dimension() ? axis : -1; }
-  int stress_field(int i, int j) const override;
+  int velocity_field(int axis) const override { return layout_.velocity(axis); }
+  int stress_field(int i, int j) const override { return layout_.stress(i, j); }
+  int pore_pressure_field() const override { return layout_.pore_pressure(); }
   double max_wave_speed() const override;
   /// c_p of one material: sqrt(modulus / density) with the modulus of the kinematics.
   double wave_speed(std::int32_t material) const override;
@@ -81,28 +82,56 @@ class DrySolid : public PhysicsModel {
                const FieldArray& internal, std::span<std::uint8_t> flowing) const override;
 
   Kinematics kinematics() const { return kinematics_; }
+  const FieldLayout& layout() const { return layout_; }
+  /// The elastic stiffness of material m on the carried stress components (the kinematics'
+  /// order, engineering shear strains).
+  const StiffnessMatrix& stiffness(std::int32_t material) const {
+    return stiffness_[static_cast<std::size_t>(material)];
+  }
   const Material& material(std::int32_t index) const override { return *materials_[index]; }
   std::size_t material_count() const override { return materials_.size(); }
   const Loads& loads() const { return loads_; }
 
+ protected:
+  /// `pore_pressure`: the layout carries a pore pressure after the stresses (SaturatedVpw).
+  DrySolid(Kinematics kinematics, std::vector<std::unique_ptr<Material>> materials, Loads loads,
+           SourceIntegration integration, bool pore_pressure);
+
  private:
+  static constexpr int kMaxStress = KinematicAssumption::kMaxStress;
+
   void advance_velocity(double rate_v[3], double time, double interval, double v[3]) const;
-  void advance_stress(const Material& material, const double* rate_sigma, double time,
-                      double interval, double* sigma, double* kappa) const;
+  void advance_stress(const Material& material, const StiffnessMatrix& stiffness,
+                      const double* rate_sigma, double time, double interval, double* sigma,
+                      double* kappa) const;
   // Stress source -D^e : eps_dot^vp in the carried components.
-  void stress_source(const Material& material, const double* sigma, const double* kappa,
-                     double* sigma_rate, double* kappa_rate) const;
+  void stress_source(const Material& material, const StiffnessMatrix& stiffness,
+                     const double* sigma, const double* kappa, double* sigma_rate,
+                     double* kappa_rate) const;
+  // n (x) n as an engineering strain on the carried components.
+  void normal_strain(const std::array<double, 3>& normal, double* strain) const;
+  // Engineering strain rate of every carried component at point i (docs/theory.md eq. 1.4).
+  void strain_rate(const FieldArray& gradient, std::int64_t i, double* strain_rate) const;
+
+  // The gradient fields whose sum is the engineering strain rate of a carried component.
+  struct StrainRateGradients {
+    int count = 0;
+    std::array<int, 2> field{};
+  };
 
   Kinematics kinematics_;
+  FieldLayout layout_;
   std::vector<std::unique_ptr<Material>> materials_;
   Loads loads_;
   SourceIntegration integration_;
-  std::vector<std::string> names_;
-  std::vector<Parity> parities_;
   std::vector<std::string> internal_names_;
   int internal_count_ = 0;
-  int stress_count_ = 0;
-  std::array<int, 4> stress_slot_{};  // SymmetricTensor slot of each carried stress component
+  std::vector<StiffnessMatrix> stiffness_;  // of each material
+  // Tables of the kinematics, read once so that the point loops only index arrays.
+  std::array<int, kMaxStress> stress_slot_{};      // SymmetricTensor slot of each component
+  std::array<double, kMaxStress> shear_factor_{};  // 2 off the diagonal: gamma = 2 eps
+  std::array<StrainRateGradients, kMaxStress> strain_rate_gradients_{};
+  std::array<std::array<int, 3>, 3> divergence_gradients_{};  // d sigma_ab / dx_b of axis a
 };
 
 }  // namespace rktsph

@@ -2,18 +2,13 @@
 #include "rktsph/core/parallel.hpp"
 
 #include <algorithm>
+#include <array>
 
 namespace rktsph {
 
 SaturatedVpw::SaturatedVpw(Kinematics kinematics, std::vector<std::unique_ptr<Material>> materials,
                            Loads loads, SourceIntegration integration, PoreFluid fluid)
-    : DrySolid(kinematics, std::move(materials), loads, integration), fluid_(fluid) {
-  names_ = DrySolid::field_names();
-  names_.push_back("pore_pressure");
-  const auto dry = DrySolid::parities();
-  parities_.assign(dry.begin(), dry.end());
-  parities_.push_back(kEven);  // a scalar: even under every reflection
-}
+    : DrySolid(kinematics, std::move(materials), loads, integration, true), fluid_(fluid) {}
 
 double SaturatedVpw::divergence_bound(int field) const {
   if (field != pore_pressure_field()) return DrySolid::divergence_bound(field);
@@ -28,12 +23,17 @@ void SaturatedVpw::flux_rate(std::span<const std::int32_t> material, const Field
   const auto n = static_cast<std::int64_t>(material.size());
   const int d = dimension();
   const int pw = pore_pressure_field();
+  std::array<int, 3> pressure_gradient{};
+  for (int a = 0; a < d; ++a)
+    pressure_gradient[static_cast<std::size_t>(a)] = layout().gradient(pw, a);
   const double alpha = fluid_.biot_coefficient;
 #pragma omp parallel for schedule(static) if (n > kParallelThreshold)
   for (std::int64_t i = 0; i < n; ++i) {
     const double density = this->material(material[i]).density();
     for (int a = 0; a < d; ++a)
-      rate.field(a)[i] -= alpha * gradient.field(pw * d + a)[i] / density;  // eq. 6.1
+      rate.field(layout().velocity(a))[i] -=
+          alpha * gradient.field(pressure_gradient[static_cast<std::size_t>(a)])[i] /
+          density;            // eq. 6.1
     rate.field(pw)[i] = 0.0;  // frozen in the pass; the projection advances it
   }
 }

@@ -21,10 +21,6 @@ class SaturatedVpw final : public DrySolid {
   SaturatedVpw(Kinematics kinematics, std::vector<std::unique_ptr<Material>> materials, Loads loads,
                SourceIntegration integration, PoreFluid fluid);
 
-  int field_count() const override { return static_cast<int>(names_.size()); }
-  const std::vector<std::string>& field_names() const override { return names_; }
-  std::span<const Parity> parities() const override { return parities_; }
-  int pore_pressure_field() const override { return field_count() - 1; }
   double biot_coefficient() const override { return fluid_.biot_coefficient; }
   double divergence_bound(int field) const override;
 
@@ -35,8 +31,6 @@ class SaturatedVpw final : public DrySolid {
 
  private:
   PoreFluid fluid_;
-  std::vector<std::string> names_;
-  std::vector<Parity> parities_;
 };
 
 }  // namespace rktsph
