@@ -62,17 +62,8 @@ std::unique_ptr<StepProjection> create_pressure_projection(
 
 const std::vector<RegisteredModel>& registered_models() {
   static const std::vector<RegisteredModel> models = {
-      {"dry_solid",
-       ModelKind::DrySolid,
-       {1, 2},
-       OperatorPolicy::ReferenceConfiguration,
-       create_dry_solid,
-       nullptr},
-      {"saturated_vpw",
-       ModelKind::SaturatedVpw,
-       {1, 2},
-       OperatorPolicy::ReferenceConfiguration,
-       create_saturated_vpw,
+      {ModelKind::DrySolid, OperatorPolicy::ReferenceConfiguration, create_dry_solid, nullptr},
+      {ModelKind::SaturatedVpw, OperatorPolicy::ReferenceConfiguration, create_saturated_vpw,
        create_pressure_projection},
   };
   return models;

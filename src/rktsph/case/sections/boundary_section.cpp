@@ -2,6 +2,7 @@
 // (docs/input-reference.md, "boundary_conditions").
 #include "rktsph/case/sections/sections.hpp"
 #include "rktsph/case/sections/value_readers.hpp"
+#include "rktsph/core/axes.hpp"
 
 namespace rktsph {
 
@@ -91,11 +92,11 @@ const KeyTable<Condition>& condition_keys() {
           "Smooth wall or symmetry plane: normal velocity and shear stress zero.", read_roller,
           emit_if(Condition::Kind::Roller, "roller",
                   [](YAML::Emitter& out, const Condition& condition, int) {
-                    out << (condition.axis == 0 ? "x" : "y");
+                    out << axis_letter(condition.axis);
                   })),
       section_key<Condition>(
           "mirror", "boolean", "true", "true, false; with roller only",
-          "Fold mirror images of the neighbours into the operators (prototype R3).",
+          "Fold mirror images of the neighbours into the operators (docs/theory.md §7.1).",
           [](const YamlNode& node, Condition& condition, Reading&) {
             condition.mirror = to_bool(node);
           },

@@ -62,7 +62,7 @@ const KeyTable<NumericsSpec>& numerics_keys() {
                                  {"gaussian", KernelType::Gaussian}},
                                 "Smoothing kernel."),
       number_key<N>("h_over_dx", &N::h_over_dx, kSmoothingRatioRange, "–",
-                    "Smoothing length over lattice spacing (prototype R1)."),
+                    "Smoothing length over lattice spacing (docs/theory.md §7.1)."),
       integer_key<N, int>("interpolation_order", &N::interpolation_order, 0, 1,
                           "0: Shepard-normalised; 1: first-order corrected."),
       number_key<N>("courant", &N::courant, kCourantRange, "–",
@@ -71,7 +71,7 @@ const KeyTable<NumericsSpec>& numerics_keys() {
                              "from courant", "A fixed time step instead of the Courant rule."),
       choice_key<N, bool>("source_coupling", &N::frozen_flux_source,
                           {{"frozen_flux", true}, {"additive", false}},
-                          "How stiff sources are coupled to the flux step (prototype R5)."),
+                          "How stiff sources are coupled to the flux step (docs/theory.md §7.1)."),
       number_key<N>("rk_substep_factor", &N::rk_substep_factor, NumberRange::positive(), "–",
                     "Sub-steps of the source integration: m = ceil(dt λ_src / factor)."),
       integer_key<N, int>("rk_max_substeps", &N::rk_max_substeps, 1,
@@ -94,7 +94,7 @@ const KeyTable<NumericsSpec>& numerics_keys() {
                out << YAML::EndMap;
              }},
       number_key<N>("artificial_viscosity", &N::artificial_viscosity, NumberRange::non_negative(),
-                    "–", "α of the artificial viscosity (prototype R7); 0 = off."),
+                    "–", "α of the artificial viscosity (docs/theory.md §7.1); 0 = off."),
   };
   return keys;
 }

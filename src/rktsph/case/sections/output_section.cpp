@@ -30,8 +30,8 @@ const KeyTable<TimeSpec>& time_keys() {
       integer_key<TimeSpec, long>("max_steps", &TimeSpec::max_steps, 1, kMaxCount,
                                   "The largest number of steps a run may need."),
       optional_number_key<TimeSpec>(
-          "stop_when_at_rest", &TimeSpec::stop_when_at_rest, NumberRange{0.0, 1.0, true, true},
-          "", "off", "Ends the run at rest: the largest speed at most this fraction of its peak."),
+          "stop_when_at_rest", &TimeSpec::stop_when_at_rest, NumberRange{0.0, 1.0, true, true}, "",
+          "off", "Ends the run at rest: the largest speed at most this fraction of its peak."),
   };
   return keys;
 }

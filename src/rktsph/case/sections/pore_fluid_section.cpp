@@ -31,7 +31,8 @@ const KeyTable<PoreFluidSpec>& pore_fluid_keys() {
       number_key<P>("gravity", &P::gravity, NumberRange::positive(), "m/s²",
                     "g in the conversion k → k̄ = k / (ρ_w g) only; not a body force."),
       number_key<P>("biot_coefficient", &P::biot_coefficient, biot_range(), "–", "α."),
-      // beta = 0 adds a spurious permeability of about dt/rho (prototype-vpw §2.2): not offered.
+      // beta = 0 adds a spurious permeability of about dt/rho (docs/theory.md §7.2, S3): not
+      // offered.
       Key<P>{"projection_beta", "integer", "", "1", "1", "Incremental projection.", false,
              [](const YamlNode& node, P& fluid, Reading&) {
                fluid.projection_beta = static_cast<double>(to_integer(node, 1, 1));

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "rktsph/case/key_spec.hpp"
+#include "rktsph/core/axes.hpp"
 
 namespace rktsph {
 
@@ -170,7 +171,7 @@ void read_box(const YamlNode& node, int dimension, Vec3& min, Vec3& max, bool st
     if (!ordered) {
       fail_at(*box.find("max"),
               fmt::format("max is not {} min in {}", strict ? "above" : "at or above",
-                          axis == 0 ? "x" : "y"),
+                          axis_letter(axis)),
               strict ? "min < max in every component" : "min <= max in every component");
     }
   }

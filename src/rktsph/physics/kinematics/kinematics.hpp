@@ -69,7 +69,8 @@ class KinematicAssumption {
 
 /// Uniaxial stress along x: sigma_xx only; the lateral stresses vanish.
 const KinematicAssumption& bar_1d();
-/// Plane strain in x-y: eps_zz = 0, sigma_zz carried (the invariants need it, Q7).
+/// Plane strain in x-y: eps_zz = 0, sigma_zz carried (the invariants need it,
+/// docs/theory.md §7.4).
 const KinematicAssumption& plane_strain();
 /// Plane stress in x-y: sigma_zz = sigma_yz = sigma_zx = 0.
 const KinematicAssumption& plane_stress();
