@@ -126,10 +126,62 @@ void DrySolid::strain_rate(const FieldArray& gradient, std::int64_t i, double* s
   }
 }
 
+template <int Dimension, int StressCount>
+void DrySolid::flux_rate_fixed(std::span<const std::int32_t> material, const FieldArray& gradient,
+                               FieldArray& rate) const {
+  // The same sums, in the same order, as the general loop below (docs/theory.md §1.6).
+  const auto n = static_cast<std::int64_t>(material.size());
+  const double* divergence[Dimension][Dimension];
+  double* velocity_rate[Dimension];
+  for (int a = 0; a < Dimension; ++a) {
+    velocity_rate[a] = rate.field(layout_.velocity(a));
+    for (int b = 0; b < Dimension; ++b)
+      divergence[a][b] = gradient.field(
+          divergence_gradients_[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)]);
+  }
+  const double* strain_terms[StressCount][2] = {};
+  int strain_term_count[StressCount];
+  double* stress_rate[StressCount];
+  for (int c = 0; c < StressCount; ++c) {
+    const StrainRateGradients& terms = strain_rate_gradients_[static_cast<std::size_t>(c)];
+    strain_term_count[c] = terms.count;
+    for (int t = 0; t < terms.count; ++t)
+      strain_terms[c][t] = gradient.field(terms.field[static_cast<std::size_t>(t)]);
+    stress_rate[c] = rate.field(layout_.stress_component(c));
+  }
+#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto m = static_cast<std::size_t>(material[i]);
+    const double density = materials_[m]->density();
+    for (int a = 0; a < Dimension; ++a) {
+      double sum = divergence[a][0][i];
+      for (int b = 1; b < Dimension; ++b)
+        sum += divergence[a][b][i];
+      velocity_rate[a][i] = sum / density;
+    }
+    double strain[StressCount];
+    for (int c = 0; c < StressCount; ++c) {
+      double value = strain_term_count[c] > 0 ? strain_terms[c][0][i] : 0.0;
+      if (strain_term_count[c] > 1) value += strain_terms[c][1][i];
+      strain[c] = value;
+    }
+    const StiffnessMatrix& stiffness = stiffness_[m];
+    for (int r = 0; r < StressCount; ++r) {
+      double sum = stiffness(r, 0) * strain[0];
+      for (int c = 1; c < StressCount; ++c)
+        sum += stiffness(r, c) * strain[c];
+      stress_rate[r][i] = sum;
+    }
+  }
+}
+
 void DrySolid::flux_rate(std::span<const std::int32_t> material, const FieldArray& gradient,
                          FieldArray& rate) const {
-  const auto n = static_cast<std::int64_t>(material.size());
   const int d = dimension(), ns = layout_.stress_count();
+  if (d == 2 && ns == 4) return flux_rate_fixed<2, 4>(material, gradient, rate);  // plane strain
+  if (d == 2 && ns == 3) return flux_rate_fixed<2, 3>(material, gradient, rate);  // plane stress
+  if (d == 1 && ns == 1) return flux_rate_fixed<1, 1>(material, gradient, rate);  // 1D bar
+  const auto n = static_cast<std::int64_t>(material.size());
 #pragma omp parallel for schedule(static) if (n > kParallelThreshold)
   for (std::int64_t i = 0; i < n; ++i) {
     const double density = materials_[static_cast<std::size_t>(material[i])]->density();

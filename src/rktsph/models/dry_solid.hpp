@@ -100,6 +100,11 @@ class DrySolid : public PhysicsModel {
  private:
   static constexpr int kMaxStress = KinematicAssumption::kMaxStress;
 
+  /// flux_rate with the dimension and the number of stress components fixed at compile time and
+  /// every field's array looked up once: the hot loop of the common settings.
+  template <int Dimension, int StressCount>
+  void flux_rate_fixed(std::span<const std::int32_t> material, const FieldArray& gradient,
+                       FieldArray& rate) const;
   void advance_velocity(double rate_v[3], double time, double interval, double v[3]) const;
   void advance_stress(const Material& material, const StiffnessMatrix& stiffness,
                       const double* rate_sigma, double time, double interval, double* sigma,
