@@ -28,7 +28,8 @@ std::string loaded_cut(const std::string& numerics) {
 }
 
 bool same_bits(const FieldArray& a, const FieldArray& b) {
-  return a.data().size() == b.data().size() &&
+  if (a.data().size() != b.data().size()) return false;
+  return a.data().empty() ||
          std::memcmp(a.data().data(), b.data().data(), a.data().size() * sizeof(double)) == 0;
 }
 
