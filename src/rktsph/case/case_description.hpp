@@ -19,8 +19,9 @@ namespace rktsph {
 
 using Vec3 = std::array<double, 3>;
 
-enum class ModelKind { DrySolid, SaturatedVpw };  // "dry_solid" (V1), "saturated_vpw" (V3)
-enum class PlaneKind { Strain, Stress };          // 2D only; 1D is always the uniaxial bar
+/// "dry_solid" (V1), "dry_large_deformation" (V2), "saturated_vpw" (V3)
+enum class ModelKind { DrySolid, DryLargeDeformation, SaturatedVpw };
+enum class PlaneKind { Strain, Stress };  // 2D only; 1D is always the uniaxial bar
 
 /// A scalar parameter with the place it was written, for material blocks whose keys are
 /// validated by the material itself (each material knows its own parameters).

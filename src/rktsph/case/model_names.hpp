@@ -19,7 +19,9 @@ struct ModelName {
 /// Every model, in the order the documentation lists them.
 inline const std::vector<ModelName>& model_names() {
   static const std::vector<ModelName> names = {
-      {ModelKind::DrySolid, "dry_solid", {1, 2}},          // V1, V2: one phase
+      {ModelKind::DrySolid, "dry_solid", {1, 2}},  // V1: one phase, small deformation
+      // V2: one phase, updated Lagrangian on the moving configuration, docs/theory.md §9
+      {ModelKind::DryLargeDeformation, "dry_large_deformation", {1, 2}},
       {ModelKind::SaturatedVpw, "saturated_vpw", {1, 2}},  // V3: v-p_w, docs/theory.md §6
   };
   return names;

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "rktsph/models/dry_large_deformation.hpp"
 #include "rktsph/models/dry_solid.hpp"
 #include "rktsph/models/pressure_projection.hpp"
 #include "rktsph/models/saturated_vpw.hpp"
@@ -39,6 +40,13 @@ std::unique_ptr<PhysicsModel> create_dry_solid(const CaseDescription& descriptio
                                     loads_of(description), integration_of(description.numerics));
 }
 
+std::unique_ptr<PhysicsModel> create_dry_large_deformation(
+    const CaseDescription& description, std::vector<std::unique_ptr<Material>> materials) {
+  return std::make_unique<DryLargeDeformation>(kinematics_of(description), std::move(materials),
+                                               loads_of(description),
+                                               integration_of(description.numerics));
+}
+
 std::unique_ptr<PhysicsModel> create_saturated_vpw(
     const CaseDescription& description, std::vector<std::unique_ptr<Material>> materials) {
   const PoreFluidSpec& fluid = *description.pore_fluid;
@@ -63,6 +71,8 @@ std::unique_ptr<StepProjection> create_pressure_projection(
 const std::vector<RegisteredModel>& registered_models() {
   static const std::vector<RegisteredModel> models = {
       {ModelKind::DrySolid, OperatorPolicy::ReferenceConfiguration, create_dry_solid, nullptr},
+      {ModelKind::DryLargeDeformation, OperatorPolicy::CurrentConfiguration,
+       create_dry_large_deformation, nullptr},
       {ModelKind::SaturatedVpw, OperatorPolicy::ReferenceConfiguration, create_saturated_vpw,
        create_pressure_projection},
   };

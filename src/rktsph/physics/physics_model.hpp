@@ -102,6 +102,20 @@ class PhysicsModel {
                                                std::span<const double> start, FieldArray& values,
                                                std::size_t i) const = 0;
 
+  /// True for a model on the moving configuration (V2): its stress rate is objective, so the step
+  /// rotates the stress with the spin before each advance (rotate_stress), and its momentum
+  /// balance uses the current density.
+  virtual bool objective_stress_rate() const { return false; }
+
+  /// Rotates the carried stress of points [0, count) of `values` by the incremental rotation of
+  /// the spin skw(grad v) over `interval` (docs/theory.md eq. 9.2), the corotational part of the
+  /// Jaumann rate. The field of `gradient` holding dv_a/dx_c is velocity_gradient[a * d + c].
+  /// Nothing for a small-deformation model.
+  virtual void rotate_stress(const FieldArray& gradient, std::span<const int> velocity_gradient,
+                             double interval, std::size_t count, FieldArray& values) const {
+    (void)gradient, (void)velocity_gradient, (void)interval, (void)count, (void)values;
+  }
+
   /// Adds the artificial viscous stress q = alpha rho c_p dx sym(grad v) (docs/theory.md §2.7) to
   /// the half-step stresses of points [0, material.size()), which feed only the momentum corrector.
   virtual void add_artificial_viscosity(std::span<const std::int32_t> material,

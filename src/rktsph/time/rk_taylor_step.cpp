@@ -26,6 +26,12 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
   const std::size_t nv = reference.stress_points.size();
   const std::size_t ns = reference.sph_nodes.size();
   builder_.build(configuration, operators_);
+  if (policy == OperatorPolicy::CurrentConfiguration) motion_.emplace(reference);
+  for (int a = 0; a < d; ++a)
+    for (int c = 0; c < d; ++c) {
+      velocity_gradient_of_fields_.push_back(model.velocity_field(a) * d + c);
+      velocity_gradient_of_velocity_.push_back(a * d + c);
+    }
   // With wider stencils the velocity-only filter leaves the step unstable (spectral radius
   // 1.00003-1.001 at h = 1.0-1.3 dx); the filter on every field keeps it below 1 (§3.3). Fixed
   // at the first build, so that a rebuild never switches the filtered fields.
@@ -149,6 +155,32 @@ void RkTaylorStep::advance(State& state, double dt) {
   add_half_step_displacement(state, dt);  // the v^{n+1} half of the trapezoidal rule
   state.time += dt;
   ++state.step;
+  if (motion_) move_configuration(state);
+}
+
+void RkTaylorStep::move_configuration(State& state) {
+  motion_->move(state.displacement, state.configuration);
+  const CellQuality& quality = motion_->quality();
+  if (quality.inverted_cells > 0)
+    throw RunError(fmt::format(
+        "{} cell(s) of the moving configuration folded over at step {} (t = {:.6g} s), first the "
+        "cell of the stress point at {}: the nodes have crossed, so the cell has no volume to "
+        "integrate (docs/theory.md §9.1); reduce the time step or refine the lattice",
+        quality.inverted_cells, state.step, state.time,
+        describe_point(state.configuration.stress_points,
+                       static_cast<std::size_t>(quality.first_inverted_cell))));
+}
+
+void RkTaylorStep::scale_momentum_rate(FieldArray& rate, std::size_t count,
+                                       const double* current_volume, const double* reference_volume,
+                                       const std::int32_t* row_point) const {
+  for (int a = 0; a < model_.dimension(); ++a) {
+    double* r = rate.field(model_.velocity_field(a));
+    for (std::size_t i = 0; i < count; ++i) {
+      const auto point = row_point ? static_cast<std::size_t>(row_point[i]) : i;
+      r[i] *= current_volume[point] / reference_volume[point];
+    }
+  }
 }
 
 void RkTaylorStep::add_half_step_displacement(State& state, double dt) const {
@@ -173,6 +205,13 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
     std::copy_n(half_step_.field(v), nodes_.stress_points.size(), point_velocity_.field(a));
   }
   model_.flux_rate(nodes_.stress_point_material, point_gradient_, point_rate_);
+  if (model_.objective_stress_rate()) {  // docs/theory.md eqs. 9.2, 9.3
+    model_.rotate_stress(point_gradient_, velocity_gradient_of_fields_, 0.5 * dt,
+                         nodes_.stress_points.size(), half_step_);
+    scale_momentum_rate(point_rate_, nodes_.stress_points.size(),
+                        state.configuration.stress_points.volume.data(),
+                        nodes_.stress_points.volume.data(), nullptr);
+  }
   model_.advance(nodes_.stress_point_material, point_rate_, state.time, 0.5 * dt, half_step_,
                  point_internal_);
   if (hourglass_stiffness_.active()) {
@@ -202,6 +241,13 @@ void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
   apply_operator(operators_.boundary_gradient, state.fields, model_.parities(), nullptr,
                  &boundary_gradient_);
   model_.flux_rate(boundary_material_, boundary_gradient_, boundary_rate_);
+  if (model_.objective_stress_rate()) {
+    model_.rotate_stress(boundary_gradient_, velocity_gradient_of_fields_, 0.5 * dt,
+                         boundary.size(), boundary_values_);
+    scale_momentum_rate(boundary_rate_, boundary.size(),
+                        state.configuration.sph_nodes.volume.data(), nodes_.sph_nodes.volume.data(),
+                        boundary.data());
+  }
   model_.advance(boundary_material_, boundary_rate_, state.time, 0.5 * dt, boundary_values_,
                  boundary_internal_);
   project_free_faces(boundary_start_, boundary_values_, true);
@@ -254,6 +300,12 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
         std::copy_n(state.fields.field(f), ns, start_fields_.field(f));
     std::copy(state.internal.data().begin(), state.internal.data().end(),
               start_internal_.data().begin());
+  }
+  if (model_.objective_stress_rate()) {
+    if (!mean_update)
+      model_.rotate_stress(node_gradient_, velocity_gradient_of_fields_, dt, ns, state.fields);
+    scale_momentum_rate(node_rate_, ns, state.configuration.sph_nodes.volume.data(),
+                        nodes_.sph_nodes.volume.data(), nullptr);
   }
   // With the mean-velocity update only the velocity is advanced here; the rest after it (eq. 2.5).
   model_.advance(nodes_.node_material, node_rate_, state.time, dt, state.fields, state.internal,
@@ -312,6 +364,8 @@ void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
             state.internal.data().begin());
   strain_hourglass_stiffness_.integrate_strain(model_, node_gradient_, dt, state.strain);
   model_.flux_rate(nodes_.node_material, node_gradient_, node_rate_);
+  if (model_.objective_stress_rate())  // with the spin of the mean velocity (eq. 9.2)
+    model_.rotate_stress(mean_node_gradient_, velocity_gradient_of_velocity_, dt, ns, state.fields);
   model_.advance(nodes_.node_material, node_rate_, state.time, dt, state.fields, state.internal,
                  AdvancedFields::Others);
   project_free_faces(boundary_start_, state.fields, false);

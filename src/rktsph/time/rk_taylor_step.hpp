@@ -22,6 +22,7 @@
 #include "rktsph/boundary/boundary_conditions.hpp"
 #include "rktsph/core/checkpoint.hpp"
 #include "rktsph/geometry/node_sets.hpp"
+#include "rktsph/physics/configuration_motion.hpp"
 #include "rktsph/physics/physics_model.hpp"
 #include "rktsph/physics/state.hpp"
 #include "rktsph/sph/adjoint_operator.hpp"
@@ -71,6 +72,8 @@ class RkTaylorStep {
     strain_hourglass_stiffness_.set_reference(state.fields);
   }
   void set_projection(StepProjection* projection) { projection_ = projection; }
+  /// The motion of the configuration (policy CurrentConfiguration), or null.
+  const ConfigurationMotion* motion() const { return motion_ ? &*motion_ : nullptr; }
   /// Applies the hourglass filter of step 3 alone (docs/theory.md eq. 3.1); no-op when it is off.
   void filter_hourglass(FieldArray& fields) { filter_hourglass(fields, FilterPart::All); }
 
@@ -87,6 +90,12 @@ class RkTaylorStep {
   void finish_with_mean_velocity(State& state, double dt);
   enum class FilterPart { All, Velocity, OtherFields };
   void filter_hourglass(FieldArray& fields, FilterPart part);
+  /// Multiplies the velocity rates of rows [0, count) by V / V_0 of their point: the momentum
+  /// balance with the current density rho_0 V_0 / V (docs/theory.md eq. 9.3).
+  void scale_momentum_rate(FieldArray& rate, std::size_t count, const double* current_volume,
+                           const double* reference_volume, const std::int32_t* row_point) const;
+  /// After the step: moves the configuration (policy CurrentConfiguration, docs/theory.md §9.1).
+  void move_configuration(State& state);
 
   const PhysicsModel& model_;
   const NodeSets& nodes_;  // the reference configuration: materials, cells
@@ -94,6 +103,9 @@ class RkTaylorStep {
   StepOperatorBuilder builder_;
   OperatorPolicy policy_;
   StepOperators operators_;
+  std::optional<ConfigurationMotion> motion_;  // with the policy CurrentConfiguration
+  // Where dv_a/dx_c sits (a * d + c): in a gradient of every field, in one of the velocity only.
+  std::vector<int> velocity_gradient_of_fields_, velocity_gradient_of_velocity_;
   HourglassFields hourglass_fields_ = HourglassFields::Velocity;
   bool filter_active_ = false;
   double viscosity_length_ = 0.0;  // alpha * dx of the artificial viscosity (0 = off)

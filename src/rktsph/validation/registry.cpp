@@ -34,6 +34,8 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_strip_footing_elastic},
       {"hanging-beam", "slender elastic beam hanging under ramped gravity, damped (V2-0)",
        &validate_hanging_beam},
+      {"ld-bar1d-elastic", "1D elastic bar with the large-deformation model (5.3.2)",
+       &validate_ld_bar1d_elastic},
   };
   return cases;
 }

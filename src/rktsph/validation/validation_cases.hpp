@@ -23,5 +23,6 @@ std::vector<CheckResult> validate_vpw_localization(const ValidationContext& cont
 std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationContext& context);
 std::vector<CheckResult> validate_strip_footing_elastic(const ValidationContext& context);
 std::vector<CheckResult> validate_hanging_beam(const ValidationContext& context);
+std::vector<CheckResult> validate_ld_bar1d_elastic(const ValidationContext& context);
 
 }  // namespace rktsph
