@@ -8,6 +8,7 @@
 #include "rktsph/boundary/free_surface_detection.hpp"
 #include "rktsph/core/point_cloud.hpp"
 #include "rktsph/sph/neighbour_search.hpp"
+#include "square_lattice.hpp"
 
 namespace rktsph {
 namespace {
@@ -15,17 +16,7 @@ namespace {
 /// `per_side` x `per_side` nodes; h = 1.3 dx, cubic spline.
 void BM_FreeSurfaceDetection(benchmark::State& state, int per_side) {
   const double spacing = 0.01;
-  PointCloud nodes;
-  nodes.dimension = 2;
-  nodes.resize(static_cast<std::size_t>(per_side) * per_side);
-  for (int j = 0; j < per_side; ++j) {
-    for (int i = 0; i < per_side; ++i) {
-      const std::size_t index = static_cast<std::size_t>(j) * per_side + i;
-      nodes.position[0][index] = i * spacing;
-      nodes.position[1][index] = j * spacing;
-      nodes.volume[index] = spacing * spacing;
-    }
-  }
+  const PointCloud nodes = bench::square_lattice(per_side, spacing, 0.0);
   FreeSurfaceOptions options;
   options.smoothing_length = 1.3 * spacing;
   options.lattice_spacing = spacing;

@@ -18,6 +18,8 @@
 #include <utility>
 #include <vector>
 
+#include "rktsph/sph/kernel.hpp"
+
 namespace rktsph {
 namespace {
 
@@ -248,17 +250,6 @@ FreeSurfaceOptions cubic(double h_over_dx, double dx = 1.0) {
   return options;
 }
 
-std::string kernel_label(KernelType type) {
-  switch (type) {
-    case KernelType::CubicSpline:
-      return "cubic";
-    case KernelType::QuinticSpline:
-      return "quintic";
-    default:
-      return "gaussian";
-  }
-}
-
 // ---------------------------------------------------------------------------------------------
 // The test shapes. dx = 0.1 m so that nothing depends on unit spacing.
 
@@ -365,7 +356,8 @@ TEST(FreeSurfaceDetection, LambdaOnARegularLatticeMatchesTheHeaderTable) {
     const double flat = out.lambda[node(15, 0)];
     const double corner = out.lambda[node(0, 0)];
     std::printf("%-8s h/dx %.1f: interior %.3f second %.3f flat %.3f corner %.3f\n",
-                kernel_label(row.kernel).c_str(), row.h_over_dx, interior, second, flat, corner);
+                kernel_type_name(row.kernel).c_str(), row.h_over_dx, interior, second, flat,
+                corner);
     // The table is printed to three decimals.
     EXPECT_NEAR(interior, 1.0, 1e-9);
     EXPECT_NEAR(second, row.second, 6e-4);
@@ -381,7 +373,7 @@ TEST_P(RegularRectangle, IsExactlyItsPerimeter) {
   FreeSurfaceOptions options = cubic(h_over_dx, 0.1);
   options.kernel = kernel;
   const Score s = score(rectangle(30, 20, 0.1), options);
-  print(kernel_label(kernel) + " rectangle h/dx " + std::to_string(h_over_dx).substr(0, 3), s);
+  print(kernel_type_name(kernel) + " rectangle h/dx " + std::to_string(h_over_dx).substr(0, 3), s);
   EXPECT_EQ(s.missed, 0u);
   EXPECT_EQ(s.false_positive, 0u);
 }
