@@ -544,8 +544,8 @@ TEST(FreeSurfaceDetection, JitteredBlockKeepsItsPerimeter) {
 
 TEST(FreeSurfaceDetection, ShearedBlockKeepsItsPerimeter) {
   // x += y: the block becomes a parallelogram with 45 and 135 degree corners. Measured: no missed
-  // node; 0 and 3 false positives at h = 1.2 and 1.3 dx, all in the second row at the acute
-  // corners, where the wedge between the two faces is narrower than the umbrella; 2 % of the
+  // node; 2 and 3 false positives at h = 1.2 and 1.3 dx, all in the second row of the slanted
+  // faces, which lies only dx/sqrt(2) behind a face whose nodes are sqrt(2) dx apart; 2 % of the
   // interior nodes (10) bounds them with margin, and none may be deeper than the second row.
   // Face normals (reference F^-T n): measured max 9.6 / 10.0 degrees next to the obtuse corners,
   // mean 0.6 / 0.7.
