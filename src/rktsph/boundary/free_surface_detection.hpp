@@ -91,8 +91,8 @@ struct FreeSurface {
   std::vector<std::uint8_t> on_surface;  ///< 1: node on the free surface
   /// Outward unit normal of each surface node, components x, y, z; 0 for the other nodes.
   std::array<std::vector<double>, 3> normal;
-  /// lambda_hat: the smallest eigenvalue of M_i over its full-lattice value (0 for excluded
-  /// nodes in 1D).
+  /// lambda_hat: the smallest eigenvalue of M_i over its full-lattice value (2D; all 0 in 1D,
+  /// where only the ends are looked for).
   std::vector<double> lambda;
   std::size_t candidates = 0;  ///< nodes the pre-screen left to the scan region
   /// Scratch of the normal smoothing (kept for its capacity).
