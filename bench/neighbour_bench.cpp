@@ -8,25 +8,10 @@
 
 #include "rktsph/core/point_cloud.hpp"
 #include "rktsph/sph/neighbour_search.hpp"
+#include "square_lattice.hpp"
 
 namespace rktsph {
 namespace {
-
-/// `per_side` x `per_side` points of spacing `spacing`, the first at (start, start).
-PointCloud square_lattice(int per_side, double spacing, double start) {
-  PointCloud cloud;
-  cloud.dimension = 2;
-  cloud.resize(static_cast<std::size_t>(per_side) * per_side);
-  for (int j = 0; j < per_side; ++j) {
-    for (int i = 0; i < per_side; ++i) {
-      const std::size_t index = static_cast<std::size_t>(j) * per_side + i;
-      cloud.position[0][index] = start + i * spacing;
-      cloud.position[1][index] = start + j * spacing;
-      cloud.volume[index] = spacing * spacing;
-    }
-  }
-  return cloud;
-}
 
 /// range(0): SPH nodes per side; range(1): h / dx in hundredths. Support radius 2h (cubic spline).
 void BM_NodeToStressPointTable(benchmark::State& state) {
@@ -34,8 +19,8 @@ void BM_NodeToStressPointTable(benchmark::State& state) {
   const double spacing = 1.0 / (per_side - 1);
   const double smoothing_length = 0.01 * static_cast<double>(state.range(1)) * spacing;
   const double radius = 2.0 * smoothing_length;
-  const PointCloud nodes = square_lattice(per_side, spacing, 0.0);
-  const PointCloud stress_points = square_lattice(per_side - 1, spacing, 0.5 * spacing);
+  const PointCloud nodes = bench::square_lattice(per_side, spacing, 0.0);
+  const PointCloud stress_points = bench::square_lattice(per_side - 1, spacing, 0.5 * spacing);
 
   std::size_t pairs = 0;
   for (auto _ : state) {
