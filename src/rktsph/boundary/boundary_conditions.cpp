@@ -151,7 +151,8 @@ int BoundaryConditions::add_function(const TimeFunction& f) {
 
 BoundaryConditions::BoundaryConditions(
     const CaseDescription& description, const NodeSets& nodes,
-    const std::map<std::string, std::vector<std::int32_t>>& groups, const PhysicsModel& model) {
+    const std::map<std::string, std::vector<std::int32_t>>& groups, const PhysicsModel& model)
+    : nodes_(nodes) {
   const int d = nodes.dimension;
   const std::size_t n = nodes.sph_nodes.size();
   const double tolerance = 1e-6 * nodes.spacing;
@@ -328,6 +329,15 @@ void BoundaryConditions::classify(SurfaceSet& surface) const {
       surface.projected[i] = normal_velocity_imposed ? 0 : 1;
     }
   }
+}
+
+void BoundaryConditions::follow_configuration(const PointCloud& nodes) {
+  if (!perimeter_) {
+    SurfaceSet lattice;
+    lattice_surface(nodes_, mirror_axes_, lattice);
+    perimeter_.emplace(nodes_, lattice);
+  }
+  perimeter_->update(nodes, surface_);
 }
 
 void BoundaryConditions::replace_surface(const SurfaceSet& surface) {

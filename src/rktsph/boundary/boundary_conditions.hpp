@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "rktsph/boundary/perimeter_normals.hpp"
 #include "rktsph/boundary/surface_set.hpp"
 #include "rktsph/boundary/surface_traction.hpp"
 #include "rktsph/case/case_description.hpp"
@@ -46,6 +47,10 @@ class BoundaryConditions {
   /// Takes `surface` (normals only; its flags are recomputed) as the surface the conditions act on
   /// from now on. Reuses the buffers: no allocation when the size does not grow.
   void replace_surface(const SurfaceSet& surface);
+  /// Turns every facet of the lattice surface to the outward normal of the body's perimeter on the
+  /// moving configuration `nodes` (docs/theory.md §9.7); the facets, and which of them velocity
+  /// conditions act on, stay those of the lattice.
+  void follow_configuration(const PointCloud& nodes);
 
   /// Imposes every constraint at time t on `values`. Row of node n is n, or node_to_row[n] when
   /// given (constraints of nodes with row -1 are skipped).
@@ -97,6 +102,8 @@ class BoundaryConditions {
   std::vector<std::uint8_t> velocity_axes_;
   std::vector<std::vector<Vector3>> driven_normals_;  // per node: faces of its velocity conditions
   SurfaceSet surface_;
+  std::optional<PerimeterNormals> perimeter_;  // of the lattice surface, built on first use
+  const NodeSets& nodes_;
   std::vector<TimeFunction> functions_;
   std::vector<Constraint> pressure_constraints_;  // drained nodes, applied first
   std::vector<Constraint> roller_shear_;          // after the traction-free facets

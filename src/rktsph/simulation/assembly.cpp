@@ -234,6 +234,8 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
   step_ = std::make_unique<RkTaylorStep>(*model_, nodes_, options, std::move(builder),
                                          registered_->operator_policy, *conditions_,
                                          state_.configuration);
+  if (registered_->operator_policy == OperatorPolicy::CurrentConfiguration)
+    step_->set_moving_surface(conditions_.get());  // its faces turn with the body
   const bool compact_stencils = step_->operators().compact_stencils;
   if (numerics.hourglass_fields == HourglassFields::Velocity && !compact_stencils &&
       numerics.hourglass_filter && nodes_.dimension >= 2)

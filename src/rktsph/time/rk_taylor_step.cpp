@@ -160,6 +160,7 @@ void RkTaylorStep::advance(State& state, double dt) {
 
 void RkTaylorStep::move_configuration(State& state) {
   motion_->move(state.displacement, state.configuration);
+  if (moving_surface_) moving_surface_->follow_configuration(state.configuration.sph_nodes);
   const CellQuality& quality = motion_->quality();
   if (quality.inverted_cells > 0)
     throw RunError(fmt::format(

@@ -72,6 +72,9 @@ class RkTaylorStep {
     strain_hourglass_stiffness_.set_reference(state.fields);
   }
   void set_projection(StepProjection* projection) { projection_ = projection; }
+  /// The conditions whose faces follow the moving configuration (policy CurrentConfiguration):
+  /// the same object as the step's conditions, which it turns after every move.
+  void set_moving_surface(BoundaryConditions* conditions) { moving_surface_ = conditions; }
   /// The motion of the configuration (policy CurrentConfiguration), or null.
   const ConfigurationMotion* motion() const { return motion_ ? &*motion_ : nullptr; }
   /// Applies the hourglass filter of step 3 alone (docs/theory.md eq. 3.1); no-op when it is off.
@@ -111,6 +114,7 @@ class RkTaylorStep {
   double viscosity_length_ = 0.0;  // alpha * dx of the artificial viscosity (0 = off)
   const BoundaryConditions& conditions_;
   StepProjection* projection_ = nullptr;
+  BoundaryConditions* moving_surface_ = nullptr;
   HourglassStiffness hourglass_stiffness_;  // docs/theory.md §3.4
   StrainHourglassStiffness strain_hourglass_stiffness_;
   std::vector<std::int32_t> boundary_material_;

@@ -1,0 +1,56 @@
+#include "rktsph/boundary/perimeter_normals.hpp"
+
+#include <cmath>
+
+namespace rktsph {
+
+namespace {
+
+// The tangent from node `from` to node `to` and its perpendicular (t_y, -t_x).
+std::array<double, 2> perpendicular(const PointCloud& nodes, std::int32_t from, std::int32_t to) {
+  const auto a = static_cast<std::size_t>(from), b = static_cast<std::size_t>(to);
+  return {nodes.position[1][b] - nodes.position[1][a],
+          -(nodes.position[0][b] - nodes.position[0][a])};
+}
+
+}  // namespace
+
+PerimeterNormals::PerimeterNormals(const NodeSets& reference, const SurfaceSet& surface)
+    : dimension_(reference.dimension) {
+  if (dimension_ != 2) return;
+  ends_.resize(surface.facet_count());
+  orientation_.assign(surface.facet_count(), 1.0);
+  for (std::size_t k = 0; k < surface.size(); ++k) {
+    const std::int32_t node = surface.node[k];
+    for (std::int32_t f = surface.facets_begin(k); f < surface.facets_end(k); ++f) {
+      const Vector3 normal = surface.facet_normal(f);
+      // The face runs along the lattice axis the normal is not on.
+      const std::size_t along = std::abs(normal[0]) > 0.5 ? 1 : 0;
+      std::array<std::int32_t, 2> ends{node, node};
+      for (int side = 0; side < 2; ++side) {
+        LatticeIndex index = reference.node_index[static_cast<std::size_t>(node)];
+        index[along] += side == 0 ? -1 : 1;
+        if (const std::int32_t neighbour = reference.node_at(index); neighbour >= 0)
+          ends[static_cast<std::size_t>(side)] = neighbour;
+      }
+      const auto i = static_cast<std::size_t>(f);
+      ends_[i] = ends;
+      const auto p = perpendicular(reference.sph_nodes, ends[0], ends[1]);
+      orientation_[i] = p[0] * normal[0] + p[1] * normal[1] >= 0.0 ? 1.0 : -1.0;
+    }
+  }
+}
+
+void PerimeterNormals::update(const PointCloud& nodes, SurfaceSet& surface) const {
+  if (dimension_ != 2) return;
+  for (std::size_t i = 0; i < ends_.size(); ++i) {
+    const auto& [before, after] = ends_[i];
+    if (before == after) continue;  // an isolated node: no face to follow
+    const auto p = perpendicular(nodes, before, after);
+    const double scale = orientation_[i] / std::hypot(p[0], p[1]);
+    surface.normal[0][i] = p[0] * scale;
+    surface.normal[1][i] = p[1] * scale;
+  }
+}
+
+}  // namespace rktsph
