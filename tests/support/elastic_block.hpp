@@ -1,5 +1,6 @@
 // Case text for step tests: linear-elastic soil (rho = 2000 kg/m3, E = 10 MPa, nu = 0.3) in plane
-// strain, with its shapes, boundary conditions, loads and numerics given as YAML flow text.
+// strain (or stress), with its shapes, boundary conditions, loads and numerics given as YAML flow
+// text.
 #pragma once
 
 #include <string>
@@ -16,6 +17,7 @@ struct ElasticBlock {
   std::string loads;                    ///< e.g. "{damping: {coefficient: 20}}"; empty = none
   std::string groups;                   ///< e.g. "{load: {box: {...}}}"; empty = none
   std::string numerics = "{}";
+  std::string plane = "strain";
 
   static std::string rectangle(double width, double height) {
     return "[{rectangle: {min: [0, 0], max: [" + std::to_string(width) + ", " +
@@ -23,8 +25,9 @@ struct ElasticBlock {
   }
 
   std::string text() const {
-    std::string yaml = "name: block\ndimension: 2\nplane: strain\ngeometry:\n  spacing: " +
-                       std::to_string(spacing) + "\n  shapes: " + shapes +
+    std::string yaml = "name: block\ndimension: 2\nplane: " + plane +
+                       "\ngeometry:\n  spacing: " + std::to_string(spacing) +
+                       "\n  shapes: " + shapes +
                        "\nmaterials:\n  soil: {model: linear_elastic, density: 2000.0, "
                        "young_modulus: 1.0e7, poisson_ratio: 0.3}\n";
     if (!groups.empty()) yaml += "groups: " + groups + "\n";

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 
 #include "rktsph/core/axes.hpp"
@@ -71,6 +72,8 @@ std::string kind_name(const BoundaryConditionSpec& condition) {
       return "roller";
     case BoundaryConditionSpec::Kind::Traction:
       return "traction";
+    case BoundaryConditionSpec::Kind::Rotation:
+      return "rotation";
     case BoundaryConditionSpec::Kind::PorePressure:
       break;
   }
@@ -83,8 +86,31 @@ std::string node_text(const NodeSets& nodes, std::int32_t node) {
                      nodes.sph_nodes.position[1][node]);
 }
 
-/// The velocity component `axis` that `condition` imposes, or nullopt.
-std::optional<TimeFunction> imposed_velocity(const BoundaryConditionSpec& condition, int axis) {
+/// Velocity component `axis` of a rotation condition at the node of reference position X:
+/// v(t) = omega e_z x R(omega t) r with r = X - c, i.e.
+///   v_x = -|omega| r_x sin(|omega| t) - omega r_y cos(|omega| t),
+///   v_y = -|omega| r_y sin(|omega| t) + omega r_x cos(|omega| t)
+/// (sin(omega t) = sign(omega) sin(|omega| t)), written as one harmonic A sin(|omega| t + phase) so
+/// that apply() evaluates it like any imposed velocity.
+TimeFunction rotation_velocity(const BoundaryConditionSpec& condition, const NodeSets& nodes,
+                               std::int32_t node, int axis) {
+  const double omega = condition.angular_velocity;
+  const double rate = std::abs(omega);
+  const double rx = nodes.sph_nodes.position[0][node] - condition.centre[0];
+  const double ry = nodes.sph_nodes.position[1][node] - condition.centre[1];
+  const double sine = axis == 0 ? -rate * rx : -rate * ry;
+  const double cosine = axis == 0 ? -omega * ry : omega * rx;
+  TimeFunction function;
+  function.kind = TimeFunction::Kind::Harmonic;
+  function.amplitude = std::hypot(sine, cosine);
+  function.phase = std::atan2(cosine, sine);
+  function.period = 2.0 * std::numbers::pi / rate;
+  return function;
+}
+
+/// The velocity component `axis` that `condition` imposes on `node`, or nullopt.
+std::optional<TimeFunction> imposed_velocity(const BoundaryConditionSpec& condition, int axis,
+                                             const NodeSets& nodes, std::int32_t node) {
   switch (condition.kind) {
     case BoundaryConditionSpec::Kind::Fixed:
       return TimeFunction::constant(0.0);
@@ -93,6 +119,8 @@ std::optional<TimeFunction> imposed_velocity(const BoundaryConditionSpec& condit
       return std::nullopt;
     case BoundaryConditionSpec::Kind::Velocity:
       return condition.velocity[static_cast<std::size_t>(axis)];
+    case BoundaryConditionSpec::Kind::Rotation:
+      return rotation_velocity(condition, nodes, node, axis);
     default:
       return std::nullopt;
   }
@@ -111,6 +139,23 @@ std::optional<TimeFunction> imposed_velocity(const BoundaryConditionSpec& condit
       "one of the groups or remove one condition");
 }
 
+/// The reader refuses these too; checked again for descriptions built in code, since a zero rate
+/// would give the compiled harmonic an infinite period.
+void check_rotations(const CaseDescription& description, int dimension) {
+  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+    if (condition.kind != BoundaryConditionSpec::Kind::Rotation) continue;
+    if (dimension != 2)
+      throw InputError(condition.where, "boundary_conditions.rotation", "",
+                       "'rotation' conditions are only allowed in 2D cases",
+                       "remove it, or set dimension: 2");
+    if (condition.angular_velocity == 0.0 || !std::isfinite(condition.angular_velocity))
+      throw InputError(condition.where, "boundary_conditions.rotation.angular_velocity",
+                       fmt::format("{}", condition.angular_velocity),
+                       "angular_velocity must be non-zero",
+                       "a non-zero number [rad/s]; for a still group use 'fixed: true'");
+  }
+}
+
 /// Two imposed velocities on one node and component, with different values, would leave the
 /// result to the order of the conditions (the last one won, silently): refused. Equal values, such
 /// as a roller and a fixed base meeting at a corner, both impose zero and are accepted.
@@ -125,16 +170,16 @@ std::vector<int> refuse_conflicting_velocities(
     const auto found = groups.find(conditions[k].group);
     if (found == groups.end()) continue;  // reported where the conditions are compiled
     for (int a = 0; a < d; ++a) {
-      const std::optional<TimeFunction> value = imposed_velocity(conditions[k], a);
-      if (!value) continue;
       for (std::int32_t node : found->second) {
+        const std::optional<TimeFunction> value = imposed_velocity(conditions[k], a, nodes, node);
+        if (!value) break;  // the same for every node of the group
         int& first = owner[static_cast<std::size_t>(node) * d + a];
         if (first < 0) {
           first = static_cast<int>(k);
           continue;
         }
         const auto& earlier = conditions[static_cast<std::size_t>(first)];
-        if (!same_function(*imposed_velocity(earlier, a), *value))
+        if (!same_function(*imposed_velocity(earlier, a, nodes, node), *value))
           refuse_conflict(earlier, conditions[k], nodes, node, a,
                           "they impose different velocities along");
       }
@@ -156,6 +201,7 @@ BoundaryConditions::BoundaryConditions(
   const int d = nodes.dimension;
   const std::size_t n = nodes.sph_nodes.size();
   const double tolerance = 1e-6 * nodes.spacing;
+  check_rotations(description, d);
   const std::vector<int> velocity_owner = refuse_conflicting_velocities(description, nodes, groups);
   dimension_ = d;
   for (int a = 0; a < 3; ++a)
@@ -217,7 +263,9 @@ BoundaryConditions::BoundaryConditions(
   for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
     const auto& members = group_nodes(groups, condition);
     std::uint8_t axes = 0;
-    if (condition.kind == BoundaryConditionSpec::Kind::Fixed) axes = all_components(d);
+    if (condition.kind == BoundaryConditionSpec::Kind::Fixed ||
+        condition.kind == BoundaryConditionSpec::Kind::Rotation)
+      axes = all_components(d);
     if (condition.kind == BoundaryConditionSpec::Kind::Velocity)
       for (int a = 0; a < d; ++a)
         if (condition.velocity[a]) axes |= static_cast<std::uint8_t>(1u << a);
@@ -302,6 +350,13 @@ BoundaryConditions::BoundaryConditions(
         for (std::int32_t node : members)
           velocity_constraints_.push_back({node, model.velocity_field(a), function, 1.0});
       }
+    } else if (condition.kind == BoundaryConditionSpec::Kind::Rotation) {
+      // One function per node and component: each node has its own amplitude and phase.
+      for (std::int32_t node : members)
+        for (int a = 0; a < d; ++a)
+          velocity_constraints_.push_back(
+              {node, model.velocity_field(a),
+               add_function(rotation_velocity(condition, nodes, node, a)), 1.0});
     }
   }
 }

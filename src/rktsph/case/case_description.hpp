@@ -74,6 +74,7 @@ struct BoundaryConditionSpec {
     Roller,        ///< v_n = 0, sigma_nt = 0 (smooth wall, = symmetry plane), mirror images
     Traction,      ///< imposed traction components on the face (those given), others zero
     PorePressure,  ///< drained face: prescribed excess pore pressure (saturated model only)
+    Rotation,      ///< both velocity components of a rigid rotation about `centre` (2D only)
   };
   Kind kind = Kind::Velocity;
   std::string group;
@@ -82,6 +83,8 @@ struct BoundaryConditionSpec {
   std::optional<TimeFunction> pore_pressure;            ///< PorePressure [Pa]
   int axis = 0;        ///< Roller: axis of the normal (0 = x, 1 = y)
   bool mirror = true;  ///< Roller: fold mirror images into the operators (docs/theory.md §4.5)
+  double angular_velocity = 0.0;  ///< Rotation: omega [rad/s], counter-clockwise positive, != 0
+  Vec3 centre{};                  ///< Rotation: the fixed point [m]
   SourceLocation where;
 };
 
@@ -98,10 +101,31 @@ struct DampingSpec {
   SourceLocation where;
 };
 
+/// An initial rigid rotation, omega e_z x (X - centre), added to the initial velocity (2D).
+struct InitialRotationSpec {
+  double rate = 0.0;  ///< omega [rad/s], counter-clockwise positive
+  Vec3 centre{};      ///< [m]
+  SourceLocation where;
+};
+
+/// The first bending mode of a cantilever along x clamped at x = root, as an initial transverse
+/// velocity v_y(x) (2D).
+struct BendingModeSpec {
+  double root = 0.0;          ///< x of the clamped root [m]
+  double length = 0.0;        ///< L [m], > 0
+  double tip_velocity = 0.0;  ///< v_y at x = root + L [m/s]
+  SourceLocation where;
+};
+
 struct InitialConditionsSpec {
   Vec3 velocity{};                          ///< uniform initial velocity [m/s]
   std::optional<double> geostatic_surface;  ///< y of the free surface [m] for geostatic stress
   std::optional<double> k0;                 ///< sigma_h / sigma_v; default nu/(1-nu)
+  /// Uniform stress [Pa] added to every node, by component ("xx", "yy", "xy", "zz"); each keeps
+  /// its line, since whether the model carries it is known only once the model is built.
+  std::map<std::string, Parameter> stress;
+  std::optional<InitialRotationSpec> angular_velocity;
+  std::optional<BendingModeSpec> bending_mode;
   SourceLocation where;
 };
 

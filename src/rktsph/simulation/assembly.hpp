@@ -40,6 +40,12 @@ double estimated_run_memory(double sph_nodes, double lattice_points, double h_ov
 /// a cell are stable only up to 0.766 at h = 1.3 dx without viscosity, so they are held to 0.75.
 double stable_courant_limit(double viscosity, bool compact_stencils);
 
+/// The first clamped-free bending mode of a beam of length L at distance xi from its root,
+/// normalised to 1 at the tip: [cosh k xi - cos k xi] - s [sinh k xi - sin k xi] with
+/// k L = 1.875104 and s = (cosh kL + cos kL)/(sinh kL + sin kL); xi is clamped to [0, L] (the
+/// initial_conditions.bending_mode of docs/input-reference.md).
+double bending_mode_shape(double xi, double length);
+
 class Assembly {
  public:
   /// Builds everything; InputError for inconsistent input or a case above `limits`, RunError for
@@ -70,6 +76,10 @@ class Assembly {
 
  private:
   void initialise_state();
+  /// initial_conditions.stress, on top of the geostatic stress.
+  void add_initial_stress();
+  /// initial_conditions.angular_velocity and bending_mode, on top of the uniform velocity.
+  void add_initial_motion();
   /// Where dt comes from, with the values, for messages.
   std::string time_step_origin(const std::vector<std::string>& material_names) const;
 

@@ -10,8 +10,8 @@ namespace {
 
 using Condition = BoundaryConditionSpec;
 
-const std::vector<std::string> kKinds = {"velocity", "fixed", "roller", "traction",
-                                         "pore_pressure"};
+const std::vector<std::string> kKinds = {"velocity", "fixed",         "roller",
+                                         "traction", "pore_pressure", "rotation"};
 
 void read_roller(const YamlNode& kind, Condition& condition, Reading& reading) {
   const int dimension = reading.so_far.dimension;
@@ -20,6 +20,36 @@ void read_roller(const YamlNode& kind, Condition& condition, Reading& reading) {
   }
   condition.kind = Condition::Kind::Roller;
   condition.axis = to_choice(kind, axis_names(dimension)) == "x" ? 0 : 1;
+}
+
+/// The keys of a `rotation` condition's map.
+const KeyTable<Condition>& rotation_keys() {
+  static const KeyTable<Condition> keys = {
+      Key<Condition>{"angular_velocity", "number", "rad/s", "required", "≠ 0",
+                     "ω of the rigid rotation, counter-clockwise positive.", true,
+                     [](const YamlNode& node, Condition& condition, Reading&) {
+                       const double omega = to_number(node);
+                       // A zero rate is a fixed condition in disguise, and has no period for
+                       // the harmonic velocity the rotation is compiled into.
+                       if (omega == 0.0)
+                         fail_at(node, "angular_velocity must be non-zero",
+                                 "a non-zero number [rad/s]; for a still group use 'fixed: true'");
+                       condition.angular_velocity = omega;
+                     },
+                     [](YAML::Emitter& out, const Condition& condition, const CaseDescription&) {
+                       out << YAML::Key << "angular_velocity" << YAML::Value
+                           << number(condition.angular_velocity);
+                     }},
+      vector_key<Condition>("centre", &Condition::centre, "m", "required",
+                            "The fixed point [cx, cy]."),
+  };
+  return keys;
+}
+
+void read_rotation(const YamlNode& node, Condition& condition, Reading& reading) {
+  reject_unless_2d(node, reading.so_far.dimension, "'rotation' conditions are");
+  condition.kind = Condition::Kind::Rotation;
+  read_keys(node, rotation_keys(), condition, reading);
 }
 
 /// Writes `name: value` when the condition is of `kind`.
@@ -95,6 +125,15 @@ const KeyTable<Condition>& condition_keys() {
                     out << axis_letter(condition.axis);
                   })),
       section_key<Condition>(
+          "rotation", "map", "one kind", "2D only; keys angular_velocity, centre",
+          "Rigid rotation at a constant rate: both velocity components imposed.", read_rotation,
+          [](YAML::Emitter& out, const Condition& condition, const CaseDescription& description) {
+            if (condition.kind != Condition::Kind::Rotation) return;
+            out << YAML::Key << "rotation" << YAML::Value << YAML::Flow << YAML::BeginMap;
+            emit_keys(out, rotation_keys(), condition, description);
+            out << YAML::EndMap;
+          }),
+      section_key<Condition>(
           "mirror", "boolean", "true", "true, false; with roller only",
           "Fold mirror images of the neighbours into the operators (docs/theory.md §7.1).",
           [](const YamlNode& node, Condition& condition, Reading&) {
@@ -164,6 +203,7 @@ Key<CaseDescription> boundary_conditions_section() {
 
 void declare_boundary_condition_keys(std::vector<DeclaredKey>& list) {
   declare(list, "boundary_conditions[].", condition_keys());
+  declare(list, "boundary_conditions[].rotation.", rotation_keys());
 }
 
 }  // namespace rktsph

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "rktsph/case/key_spec.hpp"
+#include "rktsph/case/sections/value_readers.hpp"
 
 namespace rktsph {
 
@@ -58,6 +59,31 @@ Key<Section> section_key(
 template <typename Section>
 Key<Section> in_unit(Key<Section> key, std::string unit) {
   key.unit = std::move(unit);
+  return key;
+}
+
+/// A vector of the case's dimension; `default_value` is "required" or what holds when left out.
+template <typename Section>
+Key<Section> vector_key(std::string name, Vec3 Section::*member, std::string unit,
+                        std::string default_value, std::string doc) {
+  const bool required = default_value == "required";
+  Key<Section> key{std::move(name),
+                   "vector",
+                   std::move(unit),
+                   std::move(default_value),
+                   "any",
+                   std::move(doc),
+                   required,
+                   {},
+                   {}};
+  key.read = [member](const YamlNode& node, Section& section, Reading& reading) {
+    section.*member = read_vector(node, reading.so_far.dimension);
+  };
+  key.emit = [member, name = key.name](YAML::Emitter& out, const Section& section,
+                                       const CaseDescription& description) {
+    out << YAML::Key << name << YAML::Value;
+    emit_vector(out, section.*member, description.dimension);
+  };
   return key;
 }
 
