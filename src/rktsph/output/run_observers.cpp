@@ -35,6 +35,14 @@ const std::vector<std::string>& dry_output_fields() {
   return names;
 }
 
+// The large-deformation model adds what the free-surface detector finds (docs/theory.md §9.4).
+const std::vector<std::string>& moving_output_fields() {
+  static const std::vector<std::string> names = {"velocity", "displacement",      "stress",
+                                                 "pressure", "deviatoric_stress", "eps_vp",
+                                                 "material", "free_surface",      "surface_normal"};
+  return names;
+}
+
 const std::vector<std::string>& saturated_output_fields() {
   static const std::vector<std::string> names = {"velocity",          "displacement",  "stress",
                                                  "total_stress",      "pore_pressure", "pressure",
@@ -42,11 +50,50 @@ const std::vector<std::string>& saturated_output_fields() {
   return names;
 }
 
+// What a large-deformation run reports of its configuration (docs/theory.md §9.1, §9.4): the mass,
+// which the motion conserves exactly; the cells' state; the re-seeds (none: stress points are
+// their cells' centroids); and how the detected free surface agrees with the perimeter.
+JsonValue moving_configuration_summary(const Simulation& simulation,
+                                       const ConfigurationMotion& motion) {
+  const State& state = simulation.state();
+  const NodeSets& nodes = simulation.nodes();
+  const PhysicsModel& model = simulation.model();
+  double mass = 0.0, current_volume = 0.0, reference_volume = 0.0;
+  for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i) {
+    mass += model.density(nodes.node_material[i]) * nodes.sph_nodes.volume[i];
+    current_volume += state.configuration.sph_nodes.volume[i];
+    reference_volume += nodes.sph_nodes.volume[i];
+  }
+  const CellQuality& quality = motion.quality();
+  JsonValue cells = JsonValue::object();
+  cells.set("smallest_volume_ratio", quality.smallest_volume_ratio);
+  cells.set("distorted", quality.distorted_cells);
+  cells.set("folded", quality.inverted_cells);
+  FreeSurface detected;
+  detect_current_surface(simulation, detected);
+  const SurfaceAgreement agreement = compare_with_perimeter(simulation, detected);
+  JsonValue surface = JsonValue::object();
+  surface.set("perimeter_nodes", agreement.perimeter_nodes);
+  surface.set("missed", agreement.missed);
+  surface.set("false_positive", agreement.false_positive);
+  JsonValue summary = JsonValue::object();
+  summary.set("mass", mass);
+  summary.set("volume", current_volume);
+  summary.set("reference_volume", reference_volume);
+  summary.set("cells", std::move(cells));
+  summary.set("reseeded_stress_points", 0);
+  summary.set("detected_free_surface", std::move(surface));
+  return summary;
+}
+
 // The output fields of the case, or every field of the model; InputError for one the model has not.
 std::vector<std::string> output_field_selection(const Simulation& simulation) {
   const OutputSpec& output = simulation.description().output;
   const bool saturated = simulation.model().pore_pressure_field() >= 0;
-  const auto& available = saturated ? saturated_output_fields() : dry_output_fields();
+  const bool moving = simulation.model().objective_stress_rate();
+  const auto& available = saturated ? saturated_output_fields()
+                          : moving  ? moving_output_fields()
+                                    : dry_output_fields();
   for (const std::string& name : output.fields) {
     if (std::find(available.begin(), available.end(), name) == available.end()) {
       std::string allowed;
@@ -54,6 +101,7 @@ std::vector<std::string> output_field_selection(const Simulation& simulation) {
         allowed += (allowed.empty() ? "" : ", ") + a;
       throw InputError(output.where, "output.fields", name,
                        saturated ? "field not available for the saturated model"
+                       : moving  ? "field not available for the large-deformation model"
                                  : "field not available for the dry solid model",
                        allowed);
     }
@@ -143,6 +191,20 @@ void FieldSeriesWriter::write(const Simulation& simulation) {
       fields.push_back(field);
     } else if (name == "pressure" || name == "deviatoric_stress") {
       fields.push_back({name, 1, {computed(find_quantity(simulation, name))}});
+    } else if (name == "free_surface" || name == "surface_normal") {
+      if (detected_time_ != state.time || detected_.on_surface.size() != n) {
+        detect_current_surface(simulation, detected_);
+        detected_time_ = state.time;
+      }
+      if (name == "free_surface") {
+        derived.emplace_back(detected_.on_surface.begin(), detected_.on_surface.end());
+        fields.push_back({name, 1, {derived.back().data()}});
+      } else {
+        fields.push_back(
+            {name,
+             3,
+             {detected_.normal[0].data(), detected_.normal[1].data(), detected_.normal[2].data()}});
+      }
     } else if (name == "material") {
       derived.emplace_back(simulation.nodes().node_material.begin(),
                            simulation.nodes().node_material.end());
@@ -370,6 +432,8 @@ void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,
     solver.set("laplacian_scale", stats.laplacian_scale);
     summary.set("pressure_solver", std::move(solver));
   }
+  if (const ConfigurationMotion* motion = simulation.step().motion())
+    summary.set("moving_configuration", moving_configuration_summary(simulation, *motion));
   write_file_atomically(path_, summary.pretty() + "\n");
 }
 

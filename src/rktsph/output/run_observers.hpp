@@ -13,6 +13,7 @@
 #include "rktsph/output/pvd_writer.hpp"
 #include "rktsph/simulation/quantities.hpp"
 #include "rktsph/simulation/simulation.hpp"
+#include "rktsph/simulation/surface_watch.hpp"
 
 namespace rktsph {
 
@@ -62,6 +63,8 @@ class FieldSeriesWriter final : public Observer, public Checkpointed {
   std::vector<std::string> selection_;
   OutputSchedule schedule_;
   double last_written_time_ = -1.0;
+  FreeSurface detected_;  // the free_surface and surface_normal fields (moving models)
+  double detected_time_ = -1.0;
 };
 
 /// Checks that every probe's group and fields exist in `simulation` (field names depend on the

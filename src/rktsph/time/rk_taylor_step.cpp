@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "rktsph/core/error.hpp"
+#include "rktsph/physics/kinematics/objective_rate.hpp"
 
 namespace rktsph {
 
@@ -26,7 +27,10 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
   const std::size_t nv = reference.stress_points.size();
   const std::size_t ns = reference.sph_nodes.size();
   builder_.build(configuration, operators_);
-  if (policy == OperatorPolicy::CurrentConfiguration) motion_.emplace(reference);
+  if (policy == OperatorPolicy::CurrentConfiguration) {
+    motion_.emplace(reference);
+    predicted_nodes_ = reference.sph_nodes;
+  }
   for (int a = 0; a < d; ++a)
     for (int c = 0; c < d; ++c) {
       velocity_gradient_of_fields_.push_back(model.velocity_field(a) * d + c);
@@ -172,6 +176,72 @@ void RkTaylorStep::move_configuration(State& state) {
                        static_cast<std::size_t>(quality.first_inverted_cell))));
 }
 
+void RkTaylorStep::to_midpoint_configuration(FieldArray& gradient, int fields,
+                                             std::span<const int> velocity_gradient, double dt,
+                                             std::size_t count) const {
+  const int d = model_.dimension();
+  const auto n = static_cast<std::int64_t>(count);
+#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
+  for (std::int64_t i = 0; i < n; ++i) {
+    // F = I + (dt/2) G and its inverse (d <= 2: the model's dimensions).
+    double f[2][2] = {{1.0, 0.0}, {0.0, 1.0}};
+    for (int a = 0; a < d; ++a)
+      for (int c = 0; c < d; ++c)
+        f[a][c] += 0.5 * dt * gradient(velocity_gradient[static_cast<std::size_t>(a * d + c)], i);
+    double inverse[2][2];
+    if (d == 1) {
+      inverse[0][0] = 1.0 / f[0][0];
+    } else {
+      const double det = f[0][0] * f[1][1] - f[0][1] * f[1][0];
+      inverse[0][0] = f[1][1] / det;
+      inverse[0][1] = -f[0][1] / det;
+      inverse[1][0] = -f[1][0] / det;
+      inverse[1][1] = f[0][0] / det;
+    }
+    for (int field = 0; field < fields; ++field) {
+      double row[2] = {0.0, 0.0};
+      for (int c = 0; c < d; ++c)
+        for (int k = 0; k < d; ++k)
+          row[c] += gradient(field * d + k, i) * inverse[k][c];
+      for (int c = 0; c < d; ++c)
+        gradient(field * d + c, i) = row[c];
+    }
+  }
+}
+
+void RkTaylorStep::rotate_hourglass_forces(FieldArray& force, double dt) const {
+  // The generalised force k q of a cell is a vector of the current axes: it turns with the cell's
+  // spin, as the stress does (eq. 9.2), or a rotated cell would resist hourglass modes along
+  // directions it no longer has.
+  const std::size_t nv = nodes_.stress_points.size();
+  const double* dvx_dy = mean_point_gradient_.field(1);
+  const double* dvy_dx = mean_point_gradient_.field(2);
+  double* fx = force.field(0);
+  double* fy = force.field(1);
+  for (std::size_t p = 0; p < nv; ++p) {
+    const PlaneRotation q = hughes_winget_rotation(0.5 * (dvx_dy[p] - dvy_dx[p]), dt);
+    const double x = fx[p], y = fy[p];
+    fx[p] = q.c * x + q.s * y;
+    fy[p] = -q.s * x + q.c * y;
+  }
+}
+
+void RkTaylorStep::turn_surface(const State& state, double dt) {
+  // The faces' normals at X + u + (dt/2) v (docs/theory.md §9.7): the traction-free condition of
+  // the half-step and of the end of the step then acts on the faces where those values are.
+  if (!moving_surface_) return;
+  const std::size_t ns = nodes_.sph_nodes.size();
+  for (int a = 0; a < model_.dimension(); ++a) {
+    const auto axis = static_cast<std::size_t>(a);
+    const double* u = state.displacement.field(a);
+    const double* v = state.fields.field(model_.velocity_field(a));
+    for (std::size_t i = 0; i < ns; ++i)
+      predicted_nodes_.position[axis][i] =
+          nodes_.sph_nodes.position[axis][i] + u[i] + 0.5 * dt * v[i];
+  }
+  moving_surface_->follow_configuration(predicted_nodes_);
+}
+
 void RkTaylorStep::scale_momentum_rate(FieldArray& rate, std::size_t count,
                                        const double* current_volume, const double* reference_volume,
                                        const std::int32_t* row_point) const {
@@ -226,6 +296,7 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
 }
 
 void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
+  turn_surface(state, dt);  // to x^n + (dt/2) v^n, where the half-step values are
   // Step 1b: boundary nodes advance half a step with the collocated gradient; their half-step
   // values join the stress points as sources of step 2 (docs/theory.md §2.2, §7.3).
   const auto& boundary = operators_.boundary_nodes;
@@ -277,6 +348,9 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   apply_operator(operators_.points_to_nodes, half_step_, model_.parities(), nullptr,
                  &node_gradient_);
   close_incomplete_nodes(state);
+  if (model_.objective_stress_rate())  // the half-step values live on x^{n+1/2} (eq. 9.5)
+    to_midpoint_configuration(node_gradient_, model_.field_count(), velocity_gradient_of_fields_,
+                              dt, ns);
   if (!mean_update)
     strain_hourglass_stiffness_.integrate_strain(model_, node_gradient_, dt, state.strain);
   model_.flux_rate(nodes_.node_material, node_gradient_, node_rate_);
@@ -311,6 +385,7 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   // With the mean-velocity update only the velocity is advanced here; the rest after it (eq. 2.5).
   model_.advance(nodes_.node_material, node_rate_, state.time, dt, state.fields, state.internal,
                  mean_update ? AdvancedFields::Velocity : AdvancedFields::All);
+  turn_surface(state, dt);  // to x^{n+1}: u holds u^n + (dt/2) v^n, v is v^{n+1}
   project_free_faces(boundary_start_, state.fields, false);
   conditions_.apply(state.time + dt, state.fields);
   if (filter_active_) {
@@ -335,9 +410,12 @@ void RkTaylorStep::finish_with_mean_velocity(State& state, double dt) {
     }
   if (options_.stress_update == StressUpdate::MeanVelocity)
     advance_stress_with_mean_velocity(state, dt);
-  if (hourglass_stiffness_.active())
+  if (hourglass_stiffness_.active()) {
+    if (model_.objective_stress_rate() && mean_point_gradient_.field_count() > 0)
+      rotate_hourglass_forces(state.hourglass_force, dt);
     advance_hourglass_force(hourglass_stiffness_, mean_velocity_, {0, 1}, dt, hourglass_factor_,
                             state.hourglass_force, state.hourglass_force);
+  }
 }
 
 void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
@@ -353,6 +431,11 @@ void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
   std::fill(mean_node_gradient_.data().begin(), mean_node_gradient_.data().end(), 0.0);
   add_adjoint_interpolation(node_average_, mean_point_gradient_, velocity_gradient_parities_,
                             every_gradient_, mean_node_gradient_);
+  if (model_.objective_stress_rate()) {  // x^{n+1} = x^n + dt v_bar: on x^{n+1/2} (eq. 9.5)
+    to_midpoint_configuration(mean_node_gradient_, d, velocity_gradient_of_velocity_, dt, ns);
+    to_midpoint_configuration(mean_point_gradient_, d, velocity_gradient_of_velocity_, dt,
+                              nodes_.stress_points.size());  // the cells' spin
+  }
   for (int a = 0; a < d; ++a)
     for (int c = 0; c < d; ++c)
       std::copy_n(mean_node_gradient_.field(a * d + c), ns,

@@ -97,6 +97,16 @@ class RkTaylorStep {
   /// balance with the current density rho_0 V_0 / V (docs/theory.md eq. 9.3).
   void scale_momentum_rate(FieldArray& rate, std::size_t count, const double* current_volume,
                            const double* reference_volume, const std::int32_t* row_point) const;
+  /// Turns gradients taken on x^n of fields centred at t + dt/2 into gradients on the mid-step
+  /// configuration x^n + (dt/2) v: g <- g F^-1, F = I + (dt/2) grad v (docs/theory.md eq. 9.5).
+  /// `gradient` holds `fields` fields (field f along axis c at f * d + c) of `count` points.
+  void to_midpoint_configuration(FieldArray& gradient, int fields,
+                                 std::span<const int> velocity_gradient, double dt,
+                                 std::size_t count) const;
+  /// Turns the moving faces to the nodes at X + u + (dt/2) v of `state` (docs/theory.md §9.7).
+  void turn_surface(const State& state, double dt);
+  /// Turns the cells' hourglass forces with their spin over dt (docs/theory.md eq. 9.2).
+  void rotate_hourglass_forces(FieldArray& force, double dt) const;
   /// After the step: moves the configuration (policy CurrentConfiguration, docs/theory.md §9.1).
   void move_configuration(State& state);
 
@@ -115,6 +125,7 @@ class RkTaylorStep {
   const BoundaryConditions& conditions_;
   StepProjection* projection_ = nullptr;
   BoundaryConditions* moving_surface_ = nullptr;
+  PointCloud predicted_nodes_;              // where turn_surface puts the nodes
   HourglassStiffness hourglass_stiffness_;  // docs/theory.md §3.4
   StrainHourglassStiffness strain_hourglass_stiffness_;
   std::vector<std::int32_t> boundary_material_;

@@ -14,9 +14,9 @@ namespace {
 /// Upper bound of integer counts; far beyond any run, and exactly representable as a double.
 constexpr long kMaxCount = 1000000000000000L;
 
-const std::vector<std::string> kOutputFields = {"velocity",      "displacement",      "stress",
-                                                "pressure",      "deviatoric_stress", "eps_vp",
-                                                "pore_pressure", "total_stress",      "material"};
+const std::vector<std::string> kOutputFields = {
+    "velocity",      "displacement", "stress",   "pressure",     "deviatoric_stress", "eps_vp",
+    "pore_pressure", "total_stress", "material", "free_surface", "surface_normal"};
 
 const Choices<ProbeSpec::Reduction> kReductions = {{"mean", ProbeSpec::Reduction::Mean},
                                                    {"min", ProbeSpec::Reduction::Min},

@@ -1,0 +1,35 @@
+// The free surface that the detector of docs/theory.md §9.4 finds on a run's current
+// configuration, for the field output and the checks: the conditions of a moving body act on its
+// lattice perimeter (§9.7), and this says how well the detector agrees with it.
+#pragma once
+
+#include <cstddef>
+
+#include "rktsph/boundary/free_surface_detection.hpp"
+#include "rktsph/simulation/simulation.hpp"
+
+namespace rktsph {
+
+/// h of the detection over dx: inside the range its thresholds are calibrated for (1.0-1.5 dx),
+/// whatever the step's own h.
+inline constexpr double kDetectionSmoothingOverSpacing = 1.3;
+
+/// Runs the detector on the SPH nodes of the run's current configuration (2D and 1D).
+void detect_current_surface(const Simulation& simulation, FreeSurface& out);
+
+/// The detected surface against the lattice perimeter (the nodes of the conditions' surface).
+struct SurfaceAgreement {
+  std::size_t perimeter_nodes = 0;
+  std::size_t missed = 0;          ///< perimeter nodes not detected
+  std::size_t false_positive = 0;  ///< detected nodes off the perimeter
+  /// (missed + false_positive) / perimeter_nodes
+  double misflagged_fraction() const {
+    return perimeter_nodes
+               ? static_cast<double>(missed + false_positive) / static_cast<double>(perimeter_nodes)
+               : 0.0;
+  }
+};
+
+SurfaceAgreement compare_with_perimeter(const Simulation& simulation, const FreeSurface& detected);
+
+}  // namespace rktsph
