@@ -130,6 +130,31 @@ TEST(NeighbourSearch, RandomCrossSetWithQueriesOutsideTheBox) {
   }
 }
 
+TEST(NeighbourSearch, RebuiltListFindsWhatAFreshListFinds) {
+  // One list rebuilt on clouds of other sizes, dimensions and boxes (a moving configuration
+  // rebuilds its lists every step), then on an empty cloud: always the brute-force neighbours.
+  std::mt19937_64 random(4242);
+  CellList cells;
+  for (int round = 0; round < 6; ++round) {
+    const int dimension = 1 + round % 3;
+    const PointCloud sources = random_cloud(dimension, 200 + 150 * static_cast<std::size_t>(round),
+                                            -0.5 * round, 1.0 + round, random);
+    const PointCloud targets =
+        random_cloud(dimension, 300, -0.5 * round - 0.3, 1.3 + round, random);
+    const double radius = 0.1 + 0.05 * round;
+    cells.rebuild(sources, radius);
+    expect_table_equals(find_neighbours(targets, cells, radius, false),
+                        brute_force(targets, sources, radius, false),
+                        "round " + std::to_string(round));
+  }
+  const PointCloud empty = random_cloud(2, 0, 0.0, 1.0, random);
+  cells.rebuild(empty, 0.1);
+  int visited = 0;
+  cells.for_each_within({0.5, 0.5, 0.0}, 10.0,
+                        [&](std::int32_t, const auto&, double) { ++visited; });
+  EXPECT_EQ(visited, 0);
+}
+
 TEST(NeighbourSearch, RadiusLargerThanCellSizeScansEnoughCells) {
   std::mt19937_64 random(4242);
   for (int dimension = 1; dimension <= 3; ++dimension) {

@@ -115,11 +115,15 @@ void fill_neighbours(const PointCloud& targets, const CellList& sources, double 
 
 }  // namespace
 
-CellList::CellList(const PointCloud& points, double cell_size)
-    : points_(&points),
-      dimension_(points.dimension),
-      cell_size_(cell_size),
-      inverse_cell_size_(0.0) {
+CellList::CellList(const PointCloud& points, double cell_size) {
+  rebuild(points, cell_size);
+}
+
+void CellList::rebuild(const PointCloud& points, double cell_size) {
+  points_ = &points;
+  dimension_ = points.dimension;
+  cell_size_ = cell_size;
+  inverse_cell_size_ = 0.0;
   if (dimension_ < 1 || dimension_ > 3) {
     throw std::invalid_argument("CellList: dimension must be 1, 2 or 3, got " +
                                 std::to_string(dimension_));
@@ -133,7 +137,11 @@ CellList::CellList(const PointCloud& points, double cell_size)
     throw std::invalid_argument("CellList: more than 2^31 - 1 points");
   }
   cell_start_.assign(1, 0);
-  if (point_count == 0) return;
+  if (point_count == 0) {
+    sorted_index_.clear();
+    cell_count_ = {0, 0, 0};
+    return;
+  }
 
   const BoundingBox box = bounding_box(points);
   cell_size_ = affordable_cell_size(box, dimension_, cell_size, point_count);
@@ -146,7 +154,8 @@ CellList::CellList(const PointCloud& points, double cell_size)
 
   // Cell of each point; clamped because (x - origin) / size may round up to the count.
   const auto points_signed = static_cast<std::int64_t>(point_count);
-  std::vector<std::int64_t> cell_of_point(point_count);
+  cell_of_point_.resize(point_count);
+  std::int64_t* cell_of_point = cell_of_point_.data();
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < points_signed; ++i) {
     std::int64_t linear = 0;
@@ -161,14 +170,14 @@ CellList::CellList(const PointCloud& points, double cell_size)
 
   // Counting sort, stable, so indices stay ascending within a cell.
   cell_start_.assign(static_cast<std::size_t>(cell_total) + 1, 0);
-  for (std::int64_t cell : cell_of_point)
+  for (std::int64_t cell : cell_of_point_)
     ++cell_start_[cell + 1];
   for (std::int64_t c = 0; c < cell_total; ++c)
     cell_start_[c + 1] += cell_start_[c];
-  std::vector<std::int32_t> cursor(cell_start_.begin(), cell_start_.end() - 1);
+  cursor_.assign(cell_start_.begin(), cell_start_.end() - 1);
   sorted_index_.resize(point_count);
   for (std::int64_t i = 0; i < points_signed; ++i) {
-    sorted_index_[cursor[cell_of_point[i]]++] = static_cast<std::int32_t>(i);
+    sorted_index_[cursor_[cell_of_point[i]]++] = static_cast<std::int32_t>(i);
   }
   for (int a = 0; a < dimension_; ++a) {
     sorted_position_[a].resize(point_count);

@@ -42,6 +42,11 @@ class CellList {
   /// about max(8 N, 4096) cells (a few far-away points), the cells are made larger: results are
   /// unchanged, only the scan gets coarser. cell_size() reports the size actually used.
   CellList(const PointCloud& points, double cell_size);
+  /// An empty list, to be filled by rebuild().
+  CellList() = default;
+  /// Bins `points` again (as the constructor does), reusing the list's buffers: a moving
+  /// configuration rebuilds its lists every step without allocating once they have grown.
+  void rebuild(const PointCloud& points, double cell_size);
 
   /// Calls visit(std::int32_t j, const std::array<double, 3>& offset, double distance_squared)
   /// for every point j with |query - x_j| < radius, where offset = query - x_j (components
@@ -117,16 +122,18 @@ class CellList {
     }
   }
 
-  const PointCloud* points_;
-  int dimension_;
-  double cell_size_;
-  double inverse_cell_size_;
+  const PointCloud* points_ = nullptr;
+  int dimension_ = 1;
+  double cell_size_ = 1.0;
+  double inverse_cell_size_ = 0.0;
   std::array<double, 3> origin_{0.0, 0.0, 0.0};
   std::array<std::int64_t, 3> cell_count_{0, 0, 0};
   /// Points of cell c are sorted_index_[cell_start_[c] .. cell_start_[c + 1]).
   std::vector<std::int32_t> cell_start_;
   /// Point indices in cell order (ascending within a cell).
   std::vector<std::int32_t> sorted_index_;
+  std::vector<std::int64_t> cell_of_point_;  // scratch of rebuild()
+  std::vector<std::int32_t> cursor_;
   /// Coordinates in the same order as sorted_index_.
   std::array<std::vector<double>, 3> sorted_position_;
 };

@@ -103,8 +103,10 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
   const PointCloud& points = configuration.stress_points;
   const OperatorOptions& options = operator_options_;
   const double support = options.kernel.support_radius(options.smoothing_length);
-  const CellList node_cells(nodes, support);
-  const CellList point_cells(points, support);
+  node_cells_.rebuild(nodes, support);
+  point_cells_.rebuild(points, support);
+  const CellList& node_cells = node_cells_;
+  const CellList& point_cells = point_cells_;
 
   StencilReport report;
   build_cross_operator(points, node_cells, options, ops.nodes_to_points, stencil_, &report);
@@ -189,8 +191,10 @@ void StepOperatorBuilder::build_filter_tables(const Configuration& configuration
   filter_options.interpolation_order = 1;
   const double filter_support =
       filter_options.kernel.support_radius(filter_options.smoothing_length);
-  const CellList filter_node_cells(configuration.sph_nodes, filter_support);
-  const CellList filter_point_cells(configuration.stress_points, filter_support);
+  node_cells_.rebuild(configuration.sph_nodes, filter_support);
+  point_cells_.rebuild(configuration.stress_points, filter_support);
+  const CellList& filter_node_cells = node_cells_;
+  const CellList& filter_point_cells = point_cells_;
   build_cross_operator(configuration.stress_points, filter_node_cells, filter_options,
                        ops.filter_to_points, stencil_);
   build_cross_operator(configuration.sph_nodes, filter_point_cells, filter_options,

@@ -93,6 +93,7 @@ class StepOperatorBuilder {
   std::vector<std::vector<StencilSource>> node_stencils_;  // stress points around each node
   std::vector<StencilSource> stencil_;
   std::vector<std::int32_t> own_column_;
+  CellList node_cells_, point_cells_;  // rebuilt in place (no allocation once grown)
 };
 
 }  // namespace rktsph
