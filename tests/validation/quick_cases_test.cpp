@@ -35,6 +35,11 @@ const std::map<std::string, std::map<std::string, std::string>>& known_open_chec
   static const std::string drainage =
       "a smooth, slowly decaying settlement of the whole surface after the footing stops, "
       "independent of the permeability (docs/theory.md §3.4, still open)";
+  static const std::string lateral_inertia =
+      "the 2D bar's lateral inertia, left out by the uniaxial-stress reference: the sharp front "
+      "rings the width's thickness-stretch mode and disperses; quick variant 0.025 (front) and "
+      "0.10 (history), full 0.021 and 0.105, 0.028 and 0.109 at half the spacing, 0.016 and "
+      "0.036 there with nu = 0 (cases/ld-bar2d-viscoplastic/README.md)";
   static const std::map<std::string, std::map<std::string, std::string>> checks = {
       {"hanging-beam",
        {{"hourglass_velocity_ratio",
@@ -45,6 +50,8 @@ const std::map<std::string, std::map<std::string, std::string>>& known_open_chec
          "the finite-strain effect of the large-deformation model (the compressed bar's stiffer "
          "current configuration and faster Lagrangian fronts) is 0.011 Z V0 over the quick "
          "run's four transits, linear in V0, above the 0.01 asked (docs/theory.md §9.6)"}}},
+      {"ld-bar2d-viscoplastic",
+       {{"front_speed_error", lateral_inertia}, {"history_l1_error", lateral_inertia}}},
       {"vpw-vertical-cut-footing",
        {{"residual_velocity_ratio", drainage}, {"contact_pressure_oddeven_ratio", plastic_edge}}},
   };

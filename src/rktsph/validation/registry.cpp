@@ -36,6 +36,8 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_hanging_beam},
       {"ld-bar1d-elastic", "1D elastic bar with the large-deformation model (5.3.2)",
        &validate_ld_bar1d_elastic},
+      {"ld-bar2d-viscoplastic", "wave in a 2D viscoplastic bar, large-deformation model (5.3.3)",
+       &validate_ld_bar2d_viscoplastic},
       {"ld-rotation-objectivity", "pre-stressed block in a rigid quarter turn: objective stress",
        &validate_ld_rotation_objectivity},
       {"ld-spinning-square", "free elastic square spinning at 50 rad/s (SPHinXsys test)",

@@ -24,6 +24,7 @@ std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationConte
 std::vector<CheckResult> validate_strip_footing_elastic(const ValidationContext& context);
 std::vector<CheckResult> validate_hanging_beam(const ValidationContext& context);
 std::vector<CheckResult> validate_ld_bar1d_elastic(const ValidationContext& context);
+std::vector<CheckResult> validate_ld_bar2d_viscoplastic(const ValidationContext& context);
 std::vector<CheckResult> validate_ld_rotation_objectivity(const ValidationContext& context);
 std::vector<CheckResult> validate_ld_spinning_square(const ValidationContext& context);
 
