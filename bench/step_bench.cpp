@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
@@ -32,13 +33,17 @@ std::string case_path(const std::string& size) {
 /// One simulation at a time (XL holds about a gigabyte), reused across the repetitions of its
 /// size so that setup is paid once. The state keeps advancing from one repetition to the next,
 /// which does not change the cost of a linear elastic step.
-Simulation& simulation_for(const std::string& size) {
+/// `model` overrides the case's (the large-deformation model on the same bar).
+Simulation& simulation_for(const std::string& size, const std::string& model = "") {
   static std::unique_ptr<Simulation> cached;
-  static std::string cached_size;
-  if (cached && cached_size == size) return *cached;
+  static std::string cached_key;
+  const std::string key = size + "/" + model;
+  if (cached && cached_key == key) return *cached;
   cached.reset();
-  cached = std::make_unique<Simulation>(read_case_file(case_path(size)));
-  cached_size = size;
+  std::vector<CaseOverride> overrides;
+  if (!model.empty()) overrides.push_back({"model", model});
+  cached = std::make_unique<Simulation>(read_case_file(case_path(size), overrides));
+  cached_key = key;
   return *cached;
 }
 
@@ -48,10 +53,11 @@ bool all_finite(const FieldArray& fields) {
   return true;
 }
 
-void BM_BarWaveStep(benchmark::State& bench_state, const std::string& size) {
+void step_benchmark(benchmark::State& bench_state, const std::string& size,
+                    const std::string& model) {
   Simulation* simulation = nullptr;
   try {
-    simulation = &simulation_for(size);
+    simulation = &simulation_for(size, model);
   } catch (const std::exception& error) {
     bench_state.SkipWithError(error.what());
     return;
@@ -76,6 +82,16 @@ void BM_BarWaveStep(benchmark::State& bench_state, const std::string& size) {
   bench_state.counters["dt_us"] = dt * 1e6;
 }
 
+void BM_BarWaveStep(benchmark::State& bench_state, const std::string& size) {
+  step_benchmark(bench_state, size, "");
+}
+
+/// The same bar with the large-deformation model (docs/theory.md §9): the nodes move, and every
+/// step rebuilds its operators and turns its faces on the new configuration.
+void BM_MovingBarWaveStep(benchmark::State& bench_state, const std::string& size) {
+  step_benchmark(bench_state, size, "dry_large_deformation");
+}
+
 BENCHMARK_CAPTURE(BM_BarWaveStep, s, std::string("s"))
     ->Iterations(200)
     ->Unit(benchmark::kMillisecond)
@@ -90,6 +106,19 @@ BENCHMARK_CAPTURE(BM_BarWaveStep, l, std::string("l"))
     ->UseRealTime();
 BENCHMARK_CAPTURE(BM_BarWaveStep, xl, std::string("xl"))
     ->Iterations(50)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+BENCHMARK_CAPTURE(BM_MovingBarWaveStep, s, std::string("s"))
+    ->Iterations(20)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_MovingBarWaveStep, m, std::string("m"))
+    ->Iterations(10)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_MovingBarWaveStep, l, std::string("l"))
+    ->Iterations(5)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

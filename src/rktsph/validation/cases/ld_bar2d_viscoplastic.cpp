@@ -1,4 +1,4 @@
-// Thesis §5.3.3 (docs/theory.md §8.3, §9.5): a wave in a 2D Perzyna Von Mises bar with the
+// Thesis §5.3.3 (docs/theory.md §8.3, §9.5, §9.9): a wave in a 2D Perzyna Von Mises bar with the
 // large-deformation model. Plane stress with free lateral faces: the long-wave state is uniaxial
 // stress, so the 1D bar of docs/theory.md §8.3 with the modulus E and the yield stress Y is the
 // reference (references::viscoplastic_bar.hpp, the same end conditions: left end fixed, right end
