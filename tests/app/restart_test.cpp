@@ -90,11 +90,21 @@ std::string join(const std::vector<std::string>& words) {
   return text;
 }
 
+// The "energy" object of a run folder's summary.json, as text (it holds no nested object).
+std::string energy_block(const fs::path& folder) {
+  const std::string summary = read_bytes(folder / "summary.json");
+  const std::size_t begin = summary.find("\"energy\": {");
+  if (begin == std::string::npos) return "no energy block in " + summary;
+  return summary.substr(begin, summary.find('}', begin) - begin);
+}
+
 // Every file of the uninterrupted run's series and probes has the same bytes in the restarted
-// run's folder, and the restarted folder has no other VTU.
+// run's folder, the restarted folder has no other VTU, and the summaries' energy budgets are
+// the same.
 void expect_same_results(const fs::path& uninterrupted, const fs::path& restarted) {
   for (const char* name : {"probes.csv", "series.pvd"})
     EXPECT_TRUE(read_bytes(uninterrupted / name) == read_bytes(restarted / name)) << name;
+  EXPECT_EQ(energy_block(uninterrupted), energy_block(restarted));
   std::size_t files = 0;
   for (const auto& entry : fs::directory_iterator(uninterrupted / "fields")) {
     const fs::path other = restarted / "fields" / entry.path().filename();

@@ -86,9 +86,11 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
     throw;
   }
 
-  SummaryWriter summary(directory / "summary.json");
+  EnergyBudget energy;
+  SummaryWriter summary(directory / "summary.json", &energy);
   simulation->add_observer(*series);
   simulation->add_observer(*probes);
+  simulation->add_observer(energy);  // before the summary, which reports its totals
   simulation->add_observer(summary);
   std::unique_ptr<CheckpointWriter> checkpoints;
   if (description.output.checkpoint_interval > 0.0 || checkpoint) {
@@ -96,7 +98,8 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
         directory / kCheckpointFileName, description.output.checkpoint_interval, case_hash,
         std::vector<CheckpointPart>{{"simulation", simulation.get()},
                                     {"field_series", series.get()},
-                                    {"probes", probes.get()}});
+                                    {"probes", probes.get()},
+                                    {"energy_budget", &energy}});
     simulation->add_observer(*checkpoints);  // after the observers whose state it saves
   }
   if (checkpoint) {

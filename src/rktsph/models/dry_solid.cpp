@@ -60,6 +60,7 @@ DrySolid::DrySolid(Kinematics kinematics, std::vector<std::unique_ptr<Material>>
   const KinematicAssumption& assumption = layout_.kinematics();
   for (const auto& material : materials_) {
     stiffness_.push_back(assumption.stiffness(material->elastic()));
+    compliance_.push_back(compliance(stiffness_.back()));
     if (material->internal_count() > internal_count_) {
       internal_count_ = material->internal_count();
       internal_names_ = material->internal_names();
@@ -115,6 +116,19 @@ double DrySolid::divergence_bound(int field) const {
   for (const auto& material : materials_)
     modulus = std::max(modulus, elastic_stiffness(material->elastic())(0, 0));
   return 10.0 * modulus;
+}
+
+double DrySolid::elastic_energy_density(std::int32_t material, const FieldArray& values,
+                                        std::size_t i) const {
+  const int count = layout_.stress_count();
+  double sigma[kMaxStress], gamma[kMaxStress];
+  for (int c = 0; c < count; ++c)
+    sigma[c] = values(layout_.stress_component(c), i);
+  compliance_[static_cast<std::size_t>(material)].multiply(sigma, gamma);
+  double energy = 0.0;
+  for (int c = 0; c < count; ++c)
+    energy += 0.5 * sigma[c] * gamma[c];
+  return energy;
 }
 
 void DrySolid::strain_rate(const FieldArray& gradient, std::int64_t i, double* strain_rate) const {

@@ -66,6 +66,10 @@ class DrySolid : public PhysicsModel {
   }
   std::array<double, 3> in_plane_moduli(std::int32_t material) const override;
   double divergence_bound(int field) const override;
+  double elastic_energy_density(std::int32_t material, const FieldArray& values,
+                                std::size_t i) const override;
+  std::array<double, 3> body_force(double time) const override { return loads_.body_force(time); }
+  double damping(double time) const override { return loads_.damping_at(time); }
 
   void flux_rate(std::span<const std::int32_t> material, const FieldArray& gradient,
                  FieldArray& rate) const override;
@@ -131,7 +135,8 @@ class DrySolid : public PhysicsModel {
   SourceIntegration integration_;
   std::vector<std::string> internal_names_;
   int internal_count_ = 0;
-  std::vector<StiffnessMatrix> stiffness_;  // of each material
+  std::vector<StiffnessMatrix> stiffness_;   // of each material
+  std::vector<StiffnessMatrix> compliance_;  // its inverse
   // Tables of the kinematics, read once so that the point loops only index arrays.
   std::array<int, kMaxStress> stress_slot_{};      // SymmetricTensor slot of each component
   std::array<double, kMaxStress> shear_factor_{};  // 2 off the diagonal: gamma = 2 eps

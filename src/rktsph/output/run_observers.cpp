@@ -86,6 +86,23 @@ JsonValue moving_configuration_summary(const Simulation& simulation,
   return summary;
 }
 
+// The "energy" block of summary.json (docs/input-reference.md, "Results").
+JsonValue energy_summary(const EnergyTotals& totals, bool saturated) {
+  JsonValue energy = JsonValue::object();
+  energy.set("kinetic", totals.kinetic);
+  energy.set("stored_elastic", totals.stored_elastic);
+  energy.set("initial_kinetic", totals.initial_kinetic);
+  energy.set("initial_stored_elastic", totals.initial_stored_elastic);
+  energy.set("work_of_loads", totals.work_of_loads());
+  energy.set("work_of_body_force", totals.work_of_body_force);
+  energy.set("work_of_boundary", totals.work_of_boundary);
+  energy.set("damping_dissipation", totals.damping_dissipation);
+  energy.set("dissipated", totals.dissipated());
+  energy.set("plastic_dissipation", totals.plastic_dissipation);
+  energy.set("stress", saturated ? "effective" : "total");
+  return energy;
+}
+
 // The output fields of the case, or every field of the model; InputError for one the model has not.
 std::vector<std::string> output_field_selection(const Simulation& simulation) {
   const OutputSpec& output = simulation.description().output;
@@ -434,6 +451,9 @@ void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,
   }
   if (const ConfigurationMotion* motion = simulation.step().motion())
     summary.set("moving_configuration", moving_configuration_summary(simulation, *motion));
+  if (energy_)
+    summary.set("energy",
+                energy_summary(energy_->totals(), simulation.model().pore_pressure_field() >= 0));
   write_file_atomically(path_, summary.pretty() + "\n");
 }
 

@@ -11,6 +11,7 @@
 #include "rktsph/output/probe_csv.hpp"
 #include "rktsph/output/progress.hpp"
 #include "rktsph/output/pvd_writer.hpp"
+#include "rktsph/simulation/energy_budget.hpp"
 #include "rktsph/simulation/quantities.hpp"
 #include "rktsph/simulation/simulation.hpp"
 #include "rktsph/simulation/surface_watch.hpp"
@@ -108,15 +109,18 @@ class ProbeRecorder final : public Observer, public Checkpointed {
   double last_flush_wall_ = 0.0;
 };
 
-/// Writes summary.json when the run ends, however it ends (status, message, counts, program).
+/// Writes summary.json when the run ends, however it ends (status, message, counts, program),
+/// with the energy budget of `energy` when given (its totals at the last step it observed).
 class SummaryWriter final : public Observer {
  public:
-  explicit SummaryWriter(std::filesystem::path path) : path_(std::move(path)) {}
+  explicit SummaryWriter(std::filesystem::path path, const EnergyBudget* energy = nullptr)
+      : path_(std::move(path)), energy_(energy) {}
   void on_finish(const Simulation& simulation, RunStatus status,
                  const std::string& message) override;
 
  private:
   std::filesystem::path path_;
+  const EnergyBudget* energy_;
 };
 
 /// summary.json for a run that failed before its loop started (a setup or input error found after

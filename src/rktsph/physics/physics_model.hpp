@@ -77,6 +77,17 @@ class PhysicsModel {
   /// plane stress. The scale of the zero-energy controls (docs/theory.md §3.4).
   virtual std::array<double, 3> in_plane_moduli(std::int32_t material) const = 0;
 
+  /// Complementary elastic energy density 1/2 sigma : C^-1 : sigma of point i of `values`
+  /// [J/m3], with the elastic compliance of the model's kinematics on the carried stress (the
+  /// effective stress in the saturated model; sigma^2 / (2E) in the 1D bar).
+  virtual double elastic_energy_density(std::int32_t material, const FieldArray& values,
+                                        std::size_t i) const = 0;
+
+  /// The loads of the momentum balance rho dv/dt = div sigma + rho b - rho xi v: the body force
+  /// per unit mass b(t) [m/s2] and the mass-damping coefficient xi(t) [1/s].
+  virtual std::array<double, 3> body_force(double time) const = 0;
+  virtual double damping(double time) const = 0;
+
   /// Magnitude beyond which field f can only come from a diverging run (a strain of order 10);
   /// the loop stops there, while the output is still finite.
   virtual double divergence_bound(int field) const = 0;

@@ -30,4 +30,28 @@ StiffnessMatrix condensed_stiffness(const StiffnessMatrix& full, std::span<const
   return result;
 }
 
+StiffnessMatrix compliance(const StiffnessMatrix& stiffness) {
+  const int n = stiffness.size();
+  StiffnessMatrix a = stiffness;
+  StiffnessMatrix inverse(n);
+  for (int r = 0; r < n; ++r)
+    inverse(r, r) = 1.0;
+  for (int p = 0; p < n; ++p) {
+    const double pivot = a(p, p);
+    for (int c = 0; c < n; ++c) {
+      a(p, c) /= pivot;
+      inverse(p, c) /= pivot;
+    }
+    for (int r = 0; r < n; ++r) {
+      if (r == p) continue;
+      const double factor = a(r, p);
+      for (int c = 0; c < n; ++c) {
+        a(r, c) -= factor * a(p, c);
+        inverse(r, c) -= factor * inverse(p, c);
+      }
+    }
+  }
+  return inverse;
+}
+
 }  // namespace rktsph

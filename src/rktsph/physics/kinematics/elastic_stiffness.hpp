@@ -55,4 +55,8 @@ StiffnessMatrix elastic_stiffness(const ElasticConstants& elastic);
 StiffnessMatrix condensed_stiffness(const StiffnessMatrix& full, std::span<const int> kept,
                                     std::span<const int> stress_free);
 
+/// The compliance D^-1 of a stiffness (symmetric positive definite, so Gauss-Jordan elimination
+/// needs no pivoting): gamma = D^-1 sigma, engineering shear strains as in D.
+StiffnessMatrix compliance(const StiffnessMatrix& stiffness);
+
 }  // namespace rktsph

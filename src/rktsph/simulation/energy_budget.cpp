@@ -1,0 +1,201 @@
+#include "rktsph/simulation/energy_budget.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace rktsph {
+
+namespace {
+
+using Vector = std::array<double, 3>;
+
+// The total stress of node i as a 3 x 3 matrix: the carried stress, less alpha p_w on the
+// diagonal in the saturated model.
+std::array<Vector, 3> total_stress(const PhysicsModel& model, const FieldArray& values,
+                                   std::size_t i) {
+  const SymmetricTensor s = model.stress_tensor(values, i);
+  std::array<Vector, 3> sigma{{{s[0], s[3], s[5]}, {s[3], s[1], s[4]}, {s[5], s[4], s[2]}}};
+  if (const int p = model.pore_pressure_field(); p >= 0)
+    for (std::size_t a = 0; a < 3; ++a)
+      sigma[a][a] -= model.biot_coefficient() * values(p, i);
+  return sigma;
+}
+
+// The area of facet `axis` (the lattice axis of its normal) of node i: in 2D half the current
+// distances to the node's lattice neighbours along the other axis (the node's share of the face);
+// 1 in 1D.
+double facet_area(const Simulation& simulation, std::int32_t node, int axis) {
+  const NodeSets& nodes = simulation.nodes();
+  if (nodes.dimension == 1) return 1.0;
+  const PointCloud& current = simulation.state().configuration.sph_nodes;
+  const auto i = static_cast<std::size_t>(node);
+  const auto along = static_cast<std::size_t>(1 - axis);
+  double area = 0.0;
+  for (const int sign : {-1, 1}) {
+    LatticeIndex index = nodes.node_index[i];
+    index[along] += sign;
+    const std::int32_t neighbour = nodes.node_at(index);
+    if (neighbour < 0) continue;
+    const auto j = static_cast<std::size_t>(neighbour);
+    area += 0.5 * std::hypot(current.position[0][j] - current.position[0][i],
+                             current.position[1][j] - current.position[1][i]);
+  }
+  return area;
+}
+
+// The lattice axis of each facet of node i, in the order lattice_surface made them (-x, +x, -y,
+// +y, skipping directions with a neighbour or a mirror plane); the facets stay those of the
+// lattice when their normals turn with the body (docs/theory.md §9.7). Empty if the count does not
+// match `facets`.
+std::vector<int> facet_axes(const Simulation& simulation, std::int32_t node, std::int32_t facets) {
+  const NodeSets& nodes = simulation.nodes();
+  const auto i = static_cast<std::size_t>(node);
+  const std::span<const std::uint8_t> mirror = simulation.boundary_conditions().mirror_axes();
+  std::vector<int> axes;
+  for (int a = 0; a < nodes.dimension; ++a) {
+    if (!mirror.empty() && ((mirror[i] >> a) & 1u)) continue;
+    for (const int sign : {-1, 1}) {
+      LatticeIndex index = nodes.node_index[i];
+      index[static_cast<std::size_t>(a)] += sign;
+      if (nodes.node_at(index) < 0) axes.push_back(a);
+    }
+  }
+  if (static_cast<std::int32_t>(axes.size()) != facets) axes.clear();
+  return axes;
+}
+
+// The axis of the largest component of a unit normal.
+int dominant_axis(const Vector& n) {
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (std::abs(n[static_cast<std::size_t>(a)]) > std::abs(n[static_cast<std::size_t>(axis)]))
+      axis = a;
+  return axis;
+}
+
+double boundary_power(const Simulation& simulation) {
+  const PhysicsModel& model = simulation.model();
+  const SurfaceSet& surface = simulation.boundary_conditions().surface();
+  const FieldArray& values = simulation.state().fields;
+  const int d = model.dimension();
+  double power = 0.0;
+  for (std::size_t k = 0; k < surface.size(); ++k) {
+    const std::int32_t node = surface.node[k];
+    const auto i = static_cast<std::size_t>(node);
+    const std::int32_t begin = surface.facets_begin(k), end = surface.facets_end(k);
+    const std::vector<int> axes = facet_axes(simulation, node, end - begin);
+    const std::array<Vector, 3> sigma = total_stress(model, values, i);
+    for (std::int32_t f = begin; f < end; ++f) {
+      const Vector n = surface.facet_normal(f);
+      const int axis = axes.empty() ? dominant_axis(n) : axes[static_cast<std::size_t>(f - begin)];
+      double traction_velocity = 0.0;  // (sigma n) . v
+      for (int a = 0; a < d; ++a) {
+        double traction = 0.0;
+        for (std::size_t b = 0; b < 3; ++b)
+          traction += sigma[static_cast<std::size_t>(a)][b] * n[b];
+        traction_velocity += traction * values(model.velocity_field(a), i);
+      }
+      power += traction_velocity * facet_area(simulation, node, axis);
+    }
+  }
+  return power;
+}
+
+// sigma : eps_dot^vp of node i (the material's rate has tensor shear components).
+double plastic_power_density(const Material& material, const SymmetricTensor& sigma,
+                             std::span<const double> internal) {
+  if (material.is_elastic() || !material.flows(sigma, internal)) return 0.0;
+  SymmetricTensor rate{};
+  std::array<double, 16> internal_rate{};
+  material.viscoplastic_rate(sigma, internal, rate,
+                             std::span<double>(internal_rate.data(), internal.size()));
+  double power = 0.0;
+  for (std::size_t slot = 0; slot < 6; ++slot)
+    power += (slot < 3 ? 1.0 : 2.0) * sigma[slot] * rate[slot];
+  return power;
+}
+
+}  // namespace
+
+EnergyRates measure_energy(const Simulation& simulation) {
+  const PhysicsModel& model = simulation.model();
+  const NodeSets& nodes = simulation.nodes();
+  const State& state = simulation.state();
+  const FieldArray& values = state.fields;
+  const int d = model.dimension();
+  const std::array<double, 3> b = model.body_force(state.time);
+  const double xi = model.damping(state.time);
+  const int internal_count = state.internal.field_count();
+  std::array<double, 16> internal{};
+  EnergyRates rates;
+  for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i) {
+    const std::int32_t material = nodes.node_material[i];
+    const double mass = model.density(material) * nodes.sph_nodes.volume[i];
+    const double volume = state.configuration.sph_nodes.volume[i];
+    double speed2 = 0.0, body = 0.0;
+    for (int a = 0; a < d; ++a) {
+      const double v = values(model.velocity_field(a), i);
+      speed2 += v * v;
+      body += b[static_cast<std::size_t>(a)] * v;
+    }
+    rates.kinetic += 0.5 * mass * speed2;
+    rates.body_power += mass * body;
+    rates.damping_power += mass * xi * speed2;
+    rates.stored_elastic += model.elastic_energy_density(material, values, i) * volume;
+    const Material& law = model.material(material);
+    if (law.is_elastic()) continue;
+    const auto count =
+        static_cast<std::size_t>(std::clamp(std::min(law.internal_count(), internal_count), 0, 16));
+    for (std::size_t k = 0; k < count; ++k)
+      internal[k] = state.internal(static_cast<int>(k), i);
+    rates.plastic_power += plastic_power_density(law, model.stress_tensor(values, i),
+                                                 std::span<const double>(internal.data(), count)) *
+                           volume;
+  }
+  rates.boundary_power = boundary_power(simulation);
+  return rates;
+}
+
+void EnergyBudget::on_start(const Simulation& simulation) {
+  last_ = measure_energy(simulation);
+  last_time_ = simulation.state().time;
+  totals_ = {};
+  totals_.initial_kinetic = totals_.kinetic = last_.kinetic;
+  totals_.initial_stored_elastic = totals_.stored_elastic = last_.stored_elastic;
+}
+
+void EnergyBudget::after_step(const Simulation& simulation) {
+  const EnergyRates now = measure_energy(simulation);
+  const double half_step = 0.5 * (simulation.state().time - last_time_);
+  totals_.work_of_body_force += half_step * (last_.body_power + now.body_power);
+  totals_.work_of_boundary += half_step * (last_.boundary_power + now.boundary_power);
+  totals_.damping_dissipation += half_step * (last_.damping_power + now.damping_power);
+  totals_.plastic_dissipation += half_step * (last_.plastic_power + now.plastic_power);
+  totals_.kinetic = now.kinetic;
+  totals_.stored_elastic = now.stored_elastic;
+  last_ = now;
+  last_time_ = simulation.state().time;
+}
+
+void EnergyBudget::save_checkpoint(CheckpointOut& out) const {
+  out.put_doubles(std::vector<double>{
+      totals_.initial_kinetic, totals_.initial_stored_elastic, totals_.kinetic,
+      totals_.stored_elastic, totals_.work_of_body_force, totals_.work_of_boundary,
+      totals_.damping_dissipation, totals_.plastic_dissipation, last_.kinetic, last_.stored_elastic,
+      last_.body_power, last_.boundary_power, last_.damping_power, last_.plastic_power,
+      last_time_});
+}
+
+void EnergyBudget::restore_checkpoint(CheckpointIn& in) {
+  std::array<double, 15> v{};
+  in.get_doubles_into(v.data(), v.size());
+  totals_ = {v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]};
+  last_ = {v[8], v[9], v[10], v[11], v[12], v[13]};
+  last_time_ = v[14];
+}
+
+}  // namespace rktsph
