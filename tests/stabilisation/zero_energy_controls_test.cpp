@@ -277,10 +277,7 @@ TEST(ZeroEnergyControlsSlow, AKinkedTractionHasAStaticStateOnlyWithTheControls) 
 constexpr double kNeutral = 1e-8;
 
 double radius(Simulation& simulation) {
-  const test::AffineStep step = test::affine_step(simulation, 1.0);
-  using LongMatrix = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
-  const Eigen::EigenSolver<LongMatrix> solver(step.matrix.cast<long double>(), false);
-  return static_cast<double>(solver.eigenvalues().cwiseAbs().maxCoeff());
+  return test::largest_eigenvalue_modulus(test::affine_step(simulation, 1.0).matrix);
 }
 
 TEST(ZeroEnergyControlsSlow, StepStaysStableWithTheKinkAtCompactAndWideStencils) {

@@ -123,37 +123,18 @@ inline Eigen::MatrixXd step_matrix_with_forces(Simulation& simulation, double fo
       [&](Eigen::Index k) { return k < fields ? 1.0 : force_unit; }, dt);
 }
 
+/// The largest modulus of the eigenvalues of `matrix`, computed in long double (see above).
+/// Compiled once in step_matrix.cpp: the eigen-solvers are the costliest templates to compile.
+double largest_eigenvalue_modulus(const Eigen::MatrixXd& matrix);
+
 /// Spectral radius of the one-step map of the fields (sigma_zz left out) and, when the hourglass
 /// stiffness is on, of the cells' hourglass forces.
-inline double spectral_radius(Simulation& simulation, double dt = 0.0) {
-  using LongMatrix = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
-  const double force_unit = simulation.nodes().spacing;  // a force k q of 1 Pa m per unit field
-  const Eigen::EigenSolver<LongMatrix> solver(
-      step_matrix_with_forces(simulation, force_unit, dt).cast<long double>(), false);
-  return static_cast<double>(solver.eigenvalues().cwiseAbs().maxCoeff());
-}
+double spectral_radius(Simulation& simulation, double dt = 0.0);
 
 /// Largest share of the velocity in the fixed points of the step of a damped, unloaded lattice:
 /// the largest singular value of the velocity rows of an orthonormal basis of ker(I - M), with
 /// the stresses scaled by `impedance` (rho c_p) so that all unknowns are of one size. Zero when
 /// the only velocity a damped body can keep is rest (docs/theory.md §5.3).
-inline double velocity_in_fixed_points(Simulation& simulation, double impedance) {
-  const FieldArray& fields = simulation.state().fields;
-  const auto size = static_cast<Eigen::Index>(fields.field_count() * fields.point_count());
-  const auto velocities =
-      static_cast<Eigen::Index>(simulation.model().dimension() * fields.point_count());
-  std::vector<double> scale(static_cast<std::size_t>(size), impedance);
-  std::fill_n(scale.begin(), velocities, 1.0);
-  const Eigen::MatrixXd identity_minus_step =
-      Eigen::MatrixXd::Identity(size, size) - step_matrix(simulation, size, scale);
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(identity_minus_step);
-  lu.setThreshold(1e-9);
-  const Eigen::MatrixXd kernel = lu.kernel();
-  if (kernel.cols() == 0 || kernel.norm() == 0.0) return 0.0;
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(kernel);
-  const Eigen::MatrixXd basis = qr.householderQ() * Eigen::MatrixXd::Identity(size, kernel.cols());
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(basis.topRows(velocities));
-  return svd.singularValues()(0);
-}
+double velocity_in_fixed_points(Simulation& simulation, double impedance);
 
 }  // namespace rktsph::test
