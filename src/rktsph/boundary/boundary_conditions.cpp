@@ -387,11 +387,8 @@ void BoundaryConditions::classify(SurfaceSet& surface) const {
 }
 
 void BoundaryConditions::follow_configuration(const PointCloud& nodes) {
-  if (!perimeter_) {
-    SurfaceSet lattice;
-    lattice_surface(nodes_, mirror_axes_, lattice);
-    perimeter_.emplace(nodes_, lattice);
-  }
+  // Built on the first call, while surface_ still holds the lattice facets and their normals.
+  if (!perimeter_) perimeter_.emplace(nodes_, surface_);
   perimeter_->update(nodes, surface_);
 }
 
