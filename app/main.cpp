@@ -240,10 +240,14 @@ int command_validate(std::vector<std::string> names, bool all, bool quick, bool 
     std::cout << fmt::format("{:<28} {}  ({:.1f} s)\n", result.case_name,
                              result.passed ? "PASSED" : "FAILED", result.wall_seconds);
     if (!result.error.empty()) std::cout << "    error: " << result.error << "\n";
-    for (const CheckResult& check : result.checks)
-      std::cout << fmt::format("    {:<32} {:>12.5g} (reference {:.5g}, tolerance {:.3g} {})  {}\n",
-                               check.name, check.value, check.reference, check.tolerance,
+    for (const CheckResult& check : result.checks) {
+      const char* bound = check.comparison == "at_least"  ? "at least"
+                          : check.comparison == "at_most" ? "at most"
+                                                          : "tolerance";
+      std::cout << fmt::format("    {:<32} {:>12.5g} (reference {:.5g}, {} {:.3g} {})  {}\n",
+                               check.name, check.value, check.reference, bound, check.tolerance,
                                check.unit, check.passed ? "ok" : "FAIL");
+    }
   }
   if (!report.empty()) {
     std::vector<std::string> arguments = {report};

@@ -69,7 +69,7 @@ TEST(ConfigurationMotion, HomogeneousStretchScalesVolumesByTheJacobian) {
   EXPECT_NEAR(total(configuration.sph_nodes.volume), 1.08 * total(nodes.sph_nodes.volume), 1e-12);
 }
 
-TEST(ConfigurationMotion, ReportsDistortedAndFoldedCells) {
+TEST(ConfigurationMotion, ReportsDistortedConcaveAndFoldedCells) {
   const NodeSets nodes = test::rectangle_lattice(1.0, 1.0, 0.5);  // 2 x 2 cells
   Configuration configuration = reference_configuration(nodes, 0.6);
   ConfigurationMotion motion(nodes);
@@ -77,16 +77,25 @@ TEST(ConfigurationMotion, ReportsDistortedAndFoldedCells) {
   const std::int32_t centre = nodes.node_at({1, 1, 0});
   ASSERT_GE(centre, 0);
   // Moving the centre node 0.45 dx towards a corner leaves the cell there at a corner Jacobian of
-  // 0.1 (distorted, not folded); 0.6 dx folds it.
-  u(0, static_cast<std::size_t>(centre)) = -0.9 * 0.25;
-  u(1, static_cast<std::size_t>(centre)) = -0.9 * 0.25;
-  motion.move(u, configuration);
+  // 0.1 (distorted, not folded); 0.6 dx makes it an arrowhead (a negative corner Jacobian, area
+  // 0.4 of its reference one: concave, it keeps integrating); 1.2 dx takes the node past the
+  // corner, and the cell's area (-0.2 of the reference) inverts it.
+  const auto move_centre = [&](double fraction_of_dx) {
+    u(0, static_cast<std::size_t>(centre)) = -fraction_of_dx * 0.5;
+    u(1, static_cast<std::size_t>(centre)) = -fraction_of_dx * 0.5;
+    motion.move(u, configuration);
+  };
+  move_centre(0.45);
   EXPECT_EQ(motion.quality().inverted_cells, 0u);
+  EXPECT_EQ(motion.quality().concave_cells, 0u);
   EXPECT_GE(motion.quality().distorted_cells, 1u);
-  u(0, static_cast<std::size_t>(centre)) = -0.6 * 0.5;
-  u(1, static_cast<std::size_t>(centre)) = -0.6 * 0.5;
-  motion.move(u, configuration);
+  move_centre(0.6);
+  EXPECT_EQ(motion.quality().inverted_cells, 0u);
+  EXPECT_EQ(motion.quality().concave_cells, 1u);
+  EXPECT_NEAR(motion.quality().smallest_volume_ratio, 0.4, 1e-12);
+  move_centre(1.2);
   EXPECT_EQ(motion.quality().inverted_cells, 1u);
+  EXPECT_NEAR(motion.quality().smallest_volume_ratio, -0.2, 1e-12);
 }
 
 TEST(ObjectiveRate, HughesWingetRotationIsOrthogonalAndSecondOrder) {

@@ -68,6 +68,7 @@ JsonValue moving_configuration_summary(const Simulation& simulation,
   JsonValue cells = JsonValue::object();
   cells.set("smallest_volume_ratio", quality.smallest_volume_ratio);
   cells.set("distorted", quality.distorted_cells);
+  cells.set("concave", quality.concave_cells);
   cells.set("folded", quality.inverted_cells);
   FreeSurface detected;
   detect_current_surface(simulation, detected);

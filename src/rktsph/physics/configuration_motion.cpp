@@ -125,9 +125,11 @@ void ConfigurationMotion::move(const FieldArray& displacement, Configuration& co
       for (std::size_t k = 0; k < 4; ++k)
         smallest_corner = std::min(smallest_corner, jacobian[k] / reference_corner_jacobian_[p][k]);
     }
-    if (smallest_corner <= 0.0) {
+    if (ratio <= 0.0) {
       if (quality_.inverted_cells++ == 0)
         quality_.first_inverted_cell = static_cast<std::int32_t>(p);
+    } else if (smallest_corner <= 0.0) {
+      ++quality_.concave_cells;
     } else if (smallest_corner < kDistortedCornerRatio) {
       ++quality_.distorted_cells;
     }

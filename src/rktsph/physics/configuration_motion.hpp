@@ -26,7 +26,10 @@ struct CellQuality {
   /// one) is below kDistortedCornerRatio: distorted enough that their stress point is a poor
   /// centre of their nodes.
   std::size_t distorted_cells = 0;
-  /// Cells with a non-positive corner Jacobian: folded or inverted (the run stops, §9.1).
+  /// Cells with a non-positive corner Jacobian and a positive area: concave (an arrowhead), their
+  /// nodes still in order around a positive area, so they keep integrating (§9.1).
+  std::size_t concave_cells = 0;
+  /// Cells whose area is zero or negative: inverted, nodes crossed (the run stops, §9.1).
   std::size_t inverted_cells = 0;
   std::int32_t first_inverted_cell = -1;
 };

@@ -169,8 +169,9 @@ void RkTaylorStep::move_configuration(State& state) {
   if (quality.inverted_cells > 0)
     throw RunError(fmt::format(
         "{} cell(s) of the moving configuration folded over at step {} (t = {:.6g} s), first the "
-        "cell of the stress point at {}: the nodes have crossed, so the cell has no volume to "
-        "integrate (docs/theory.md §9.1); reduce the time step or refine the lattice",
+        "cell of the stress point at {}: its nodes have crossed and its area is no longer "
+        "positive, so the cell has no volume to integrate (docs/theory.md §9.1); reduce the time "
+        "step or refine the lattice",
         quality.inverted_cells, state.step, state.time,
         describe_point(state.configuration.stress_points,
                        static_cast<std::size_t>(quality.first_inverted_cell))));

@@ -42,6 +42,10 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_ld_rotation_objectivity},
       {"ld-spinning-square", "free elastic square spinning at 50 rad/s (SPHinXsys test)",
        &validate_ld_spinning_square},
+      {"ld-vertical-cut-footing", "footing on a vertical cut pushed to deep settlement (5.3.6)",
+       &validate_ld_vertical_cut_footing},
+      {"ld-strip-footing-bearing", "rigid strip footing pushed into a Von Mises stratum (5.3.7)",
+       &validate_ld_strip_footing_bearing},
   };
   return cases;
 }

@@ -39,6 +39,7 @@ JsonValue checks_json(const std::vector<CheckResult>& checks) {
     item.set("tolerance", check.tolerance);
     item.set("unit", check.unit);
     item.set("passed", check.passed);
+    item.set("comparison", check.comparison);
     array.push_back(std::move(item));
   }
   return array;
@@ -152,8 +153,24 @@ CheckResult check_within(std::string name, double value, double reference, doubl
 
 CheckResult check_at_most(std::string name, double value, double reference, double tolerance,
                           std::string unit) {
-  return {std::move(name), value,           reference,
-          tolerance,       std::move(unit), std::isfinite(value) && value <= tolerance};
+  return {std::move(name),
+          value,
+          reference,
+          tolerance,
+          std::move(unit),
+          std::isfinite(value) && value <= tolerance,
+          "at_most"};
+}
+
+CheckResult check_at_least(std::string name, double value, double reference, double minimum,
+                           std::string unit) {
+  return {std::move(name),
+          value,
+          reference,
+          minimum,
+          std::move(unit),
+          std::isfinite(value) && value >= minimum,
+          "at_least"};
 }
 
 ValidationResult run_validation(const ValidationCase& validation,

@@ -42,9 +42,12 @@ struct CheckResult {
   std::string name;
   double value = 0.0;      ///< what was measured
   double reference = 0.0;  ///< the analytical / reference value, where there is one
-  double tolerance = 0.0;
-  std::string unit;  ///< "fraction", "deg", "s", "1", ...
+  double tolerance = 0.0;  ///< the bound, read as `comparison` says
+  std::string unit;        ///< "fraction", "deg", "s", "1", ...
   bool passed = false;
+  /// How `tolerance` bounds `value`: "within" (|value - reference| <= tolerance), "at_most"
+  /// (value <= tolerance) or "at_least" (value >= tolerance).
+  std::string comparison = "within";
 };
 
 /// One curve of a figure. x and y have the same length; NaN leaves a gap.
@@ -150,6 +153,9 @@ CheckResult check_within(std::string name, double value, double reference, doubl
 /// ... or when value <= tolerance (errors and ratios measured against a reference).
 CheckResult check_at_most(std::string name, double value, double reference, double tolerance,
                           std::string unit);
+/// ... or when value >= minimum (a quantity that must be reached: a settlement, a drop).
+CheckResult check_at_least(std::string name, double value, double reference, double minimum,
+                           std::string unit);
 
 /// The JSON line of the output contract.
 std::string validation_json_line(const ValidationResult& result);

@@ -27,5 +27,7 @@ std::vector<CheckResult> validate_ld_bar1d_elastic(const ValidationContext& cont
 std::vector<CheckResult> validate_ld_bar2d_viscoplastic(const ValidationContext& context);
 std::vector<CheckResult> validate_ld_rotation_objectivity(const ValidationContext& context);
 std::vector<CheckResult> validate_ld_spinning_square(const ValidationContext& context);
+std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContext& context);
+std::vector<CheckResult> validate_ld_strip_footing_bearing(const ValidationContext& context);
 
 }  // namespace rktsph

@@ -114,22 +114,33 @@ CaseDescription load_bundled_case(const ValidationContext& context, const std::s
   return read_case_file((context.cases_directory / folder / "case.yaml").string(), overrides);
 }
 
-std::filesystem::path run_for_validation(const ValidationContext& context,
-                                         const CaseDescription& description,
-                                         const std::string& label,
-                                         const std::function<void(const Simulation&)>& inspect,
-                                         const std::vector<Observer*>& observers) {
-  const std::filesystem::path directory = context.output_directory / description.name / label;
+ValidationRun run_allowing_failure(const ValidationContext& context,
+                                   const CaseDescription& description, const std::string& label,
+                                   const std::function<void(const Simulation&)>& inspect,
+                                   const std::vector<Observer*>& observers) {
+  ValidationRun run;
+  run.directory = context.output_directory / description.name / label;
   RunOptions options;
   options.quiet = true;
   options.observers = observers;
   // The validation owns its run folders: a new validation replaces the last one's runs.
   options.existing_results = ExistingResults::Overwrite;
-  const RunOutcome outcome = run_case(description, directory, options, inspect);
-  if (outcome.status != RunStatus::Completed)
+  const RunOutcome outcome = run_case(description, run.directory, options, inspect);
+  run.completed = outcome.status == RunStatus::Completed;
+  run.message = outcome.message;
+  return run;
+}
+
+std::filesystem::path run_for_validation(const ValidationContext& context,
+                                         const CaseDescription& description,
+                                         const std::string& label,
+                                         const std::function<void(const Simulation&)>& inspect,
+                                         const std::vector<Observer*>& observers) {
+  const ValidationRun run = run_allowing_failure(context, description, label, inspect, observers);
+  if (!run.completed)
     throw RunError(fmt::format("run '{}' of {} did not complete: {}", label, description.name,
-                               outcome.message));
-  return directory;
+                               run.message));
+  return run.directory;
 }
 
 SaturatedColumn read_saturated_column(const CaseDescription& description,

@@ -53,6 +53,20 @@ std::filesystem::path run_for_validation(const ValidationContext& context,
                                          const std::function<void(const Simulation&)>& inspect = {},
                                          const std::vector<Observer*>& observers = {});
 
+/// A run that may stop early (a diverged or failed run keeps its last good output and probes).
+struct ValidationRun {
+  std::filesystem::path directory;
+  bool completed = false;
+  std::string message;  ///< why it stopped, when it did not complete
+};
+
+/// As run_for_validation, but a run that does not complete is returned, not thrown: for the cases
+/// that check how far a run gets (a settlement reached) and read the rest from what it wrote.
+ValidationRun run_allowing_failure(const ValidationContext& context,
+                                   const CaseDescription& description, const std::string& label,
+                                   const std::function<void(const Simulation&)>& inspect = {},
+                                   const std::vector<Observer*>& observers = {});
+
 /// A numeric parameter of a material block of the case; RunError if it is absent.
 double material_parameter(const CaseDescription& description, const std::string& material,
                           const std::string& key);

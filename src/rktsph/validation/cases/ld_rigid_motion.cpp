@@ -164,7 +164,7 @@ std::vector<CheckResult> validate_ld_spinning_square(const ValidationContext& co
                                  "|sigma| on the spinning square at the end"});
   }
   return {check_at_most("angular_momentum_error", momentum_error, 0.0, 0.01, "fraction"),
-          check_within("min_spacing_ratio", smallest_spacing, 1.0, 0.5, "ratio")};
+          check_at_least("min_spacing_ratio", smallest_spacing, 1.0, 0.5, "ratio")};
 }
 
 }  // namespace rktsph
