@@ -42,6 +42,8 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_ld_rotation_objectivity},
       {"ld-spinning-square", "free elastic square spinning at 50 rad/s (SPHinXsys test)",
        &validate_ld_spinning_square},
+      {"ld-cantilever-plate", "oscillating cantilever plate (Gray, Monaghan & Swift 2001): period",
+       &validate_ld_cantilever_plate},
   };
   return cases;
 }

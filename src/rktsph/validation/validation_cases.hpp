@@ -27,5 +27,6 @@ std::vector<CheckResult> validate_ld_bar1d_elastic(const ValidationContext& cont
 std::vector<CheckResult> validate_ld_bar2d_viscoplastic(const ValidationContext& context);
 std::vector<CheckResult> validate_ld_rotation_objectivity(const ValidationContext& context);
 std::vector<CheckResult> validate_ld_spinning_square(const ValidationContext& context);
+std::vector<CheckResult> validate_ld_cantilever_plate(const ValidationContext& context);
 
 }  // namespace rktsph
