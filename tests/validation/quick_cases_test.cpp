@@ -52,6 +52,14 @@ const std::map<std::string, std::map<std::string, std::string>>& known_open_chec
          "run's four transits, linear in V0, above the 0.01 asked (docs/theory.md §9.6)"}}},
       {"ld-bar2d-viscoplastic",
        {{"front_speed_error", lateral_inertia}, {"history_l1_error", lateral_inertia}}},
+      {"ld-cantilever-plate",
+       {{"period_error",
+         "the quick variant's finest lattice has 4 cells across the plate: its period is 5 % "
+         "above the thin-plate one (lattice error, about second order in dx; 2.0 % at the full "
+         "case's 8 cells; docs/theory.md §9.11)"},
+        {"period_change_finest",
+         "3 and 4 cells across the plate are far from converged: their periods differ by 3 % "
+         "(1.1 % between 6 and 8 cells in the full case; docs/theory.md §9.11)"}}},
       {"vpw-vertical-cut-footing",
        {{"residual_velocity_ratio", drainage}, {"contact_pressure_oddeven_ratio", plastic_edge}}},
   };

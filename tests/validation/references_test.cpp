@@ -2,8 +2,8 @@
 //  (a) numbers printed by the shared stdlib-only Python references. The CSVs under
 //      tests/data/references were produced by tests/data/references/generate.sh, which runs
 //      /usr/bin/python3 on elastic_bar.py, viscoplastic_bar.py, terzaghi.py, gravity_column.py,
-//      harmonic_column.py, strip_undrained.py, shear_band.py, vertical_cut.py and bearing.py with
-//      the options written in that script (one command per file);
+//      harmonic_column.py, strip_undrained.py, shear_band.py, vertical_cut.py, bearing.py and
+//      cantilever_plate.py with the options written in that script (one command per file);
 //  (b) independent physics: closed forms derived by hand, limits, conservation laws, residuals of
 //      the governing equations by finite differences, and the numbers quoted in docs/theory.md
 //      chapter 8.
@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "rktsph/validation/references/cantilever_plate.hpp"
 #include "rktsph/validation/references/elastic_bar.hpp"
 #include "rktsph/validation/references/elastic_moduli.hpp"
 #include "rktsph/validation/references/gravity_column.hpp"
@@ -1169,6 +1170,65 @@ TEST(LimitLoadsTest, UndrainedStripPorePressure) {
     const double z = radius * std::cos(angle) - d;
     EXPECT_NEAR(strip_undrained_pore_pressure(1.0, 1.0, x, z), reference, 1e-14) << angle;
   }
+}
+
+// ================================================================================================
+// Cantilever plate (docs/theory.md §9.11)
+
+// cantilever_plate.py defaults (Gray, Monaghan & Swift 2001): L = 0.2 m, H = 0.02 m, E = 2 MPa,
+// ν = 0.3975, ρ = 1000 kg/m³, V_f = 0.05.
+TEST(CantileverPlateTest, MatchesPythonFrequencyPeriodAndVelocityScale) {
+  const CantileverPlate plate{0.2, 0.02, 2e6, 0.3975, 1000.0};
+  const ReferenceFile file = read_reference("cantilever_plate.csv");
+  const Table& table = file.tables[0];
+  // Printed to 5 decimals (ω, T) and 4 (c0, tip velocity): half a unit of the last digit.
+  EXPECT_NEAR(cantilever_plate_angular_frequency(plate), table.value_of("omega"), 5e-6);
+  EXPECT_NEAR(cantilever_plate_period(plate), table.value_of("period"), 5e-6);
+  EXPECT_NEAR(cantilever_plate_velocity_scale(plate), table.value_of("c0"), 5e-5);
+  const double tip = 0.05 * cantilever_plate_velocity_scale(plate);
+  EXPECT_NEAR(tip, table.value_of("initial tip velocity"), 5e-5);
+  EXPECT_NEAR(tip / cantilever_plate_angular_frequency(plate),
+              table.value_of("linear tip amplitude"), 5e-6);
+  // The period the benchmark quotes.
+  EXPECT_NEAR(cantilever_plate_period(plate), 0.254, 5e-4);
+}
+
+TEST(CantileverPlateTest, ModeRootsSolveTheFrequencyEquation) {
+  // Tabulated clamped-free roots (Blevins): 1.87510407, 4.69409113, 7.85475744, 10.99554073.
+  const double tabulated[] = {1.87510407, 4.69409113, 7.85475744, 10.99554073};
+  for (int n = 1; n <= 4; ++n) {
+    const double x = cantilever_mode_root(n);
+    EXPECT_NEAR(x, tabulated[n - 1], 1e-8) << n;
+    EXPECT_NEAR(1.0 + std::cos(x) * std::cosh(x), 0.0, 1e-9 * std::cosh(x)) << n;
+  }
+  // Beyond the first few, (2n − 1)π/2 to within e^{−x}.
+  EXPECT_NEAR(cantilever_mode_root(8), 7.5 * kPi, 1e-9);
+  EXPECT_THROW(cantilever_mode_root(0), std::invalid_argument);
+}
+
+TEST(CantileverPlateTest, ScalesAsThinPlateTheory) {
+  const CantileverPlate plate{0.2, 0.02, 2e6, 0.3975, 1000.0};
+  const double omega = cantilever_plate_angular_frequency(plate);
+  // ω ∝ H/L² √(E/((1 − ν²) ρ)).
+  CantileverPlate thicker = plate;
+  thicker.thickness *= 2.0;
+  EXPECT_NEAR(cantilever_plate_angular_frequency(thicker), 2.0 * omega, 1e-12 * omega);
+  CantileverPlate longer = plate;
+  longer.length *= 2.0;
+  EXPECT_NEAR(cantilever_plate_angular_frequency(longer), 0.25 * omega, 1e-12 * omega);
+  CantileverPlate stiffer = plate;
+  stiffer.young_modulus *= 4.0;
+  EXPECT_NEAR(cantilever_plate_angular_frequency(stiffer), 2.0 * omega, 1e-12 * omega);
+  CantileverPlate no_poisson = plate;
+  no_poisson.poisson_ratio = 0.0;
+  EXPECT_NEAR(cantilever_plate_angular_frequency(no_poisson),
+              omega * std::sqrt(1.0 - 0.3975 * 0.3975), 1e-12 * omega);
+  CantileverPlate bad = plate;
+  bad.thickness = 0.0;
+  EXPECT_THROW(cantilever_plate_angular_frequency(bad), std::invalid_argument);
+  bad = plate;
+  bad.poisson_ratio = 0.5;
+  EXPECT_THROW(cantilever_plate_velocity_scale(bad), std::invalid_argument);
 }
 
 }  // namespace

@@ -46,6 +46,8 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_ld_vertical_cut_footing},
       {"ld-strip-footing-bearing", "rigid strip footing pushed into a Von Mises stratum (5.3.7)",
        &validate_ld_strip_footing_bearing},
+      {"ld-cantilever-plate", "oscillating cantilever plate (Gray, Monaghan & Swift 2001): period",
+       &validate_ld_cantilever_plate},
   };
   return cases;
 }
