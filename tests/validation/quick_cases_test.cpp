@@ -35,6 +35,14 @@ const std::map<std::string, std::map<std::string, std::string>>& known_open_chec
   static const std::string drainage =
       "a smooth, slowly decaying settlement of the whole surface after the footing stops, "
       "independent of the permeability (docs/theory.md §3.4, still open)";
+  static const std::string dry_plastic_edge =
+      "an odd-even contact pressure under the plastic flow at a rigid footing's edge, dry and on "
+      "the moving configuration, with the edge's neighbour at about twice the limit pressure "
+      "(docs/theory.md §9.12, §3.4 still open)";
+  static const std::string punch_edge =
+      "the cell beside the strip footing's edge takes the whole velocity jump between the footing "
+      "and the heave and is turned inside out at 0.17 B: a Lagrangian cell cannot follow a punch "
+      "edge (docs/theory.md §9.12)";
   static const std::string lateral_inertia =
       "the 2D bar's lateral inertia, left out by the uniaxial-stress reference: the sharp front "
       "rings the width's thickness-stretch mode and disperses; quick variant 0.025 (front) and "
@@ -62,6 +70,14 @@ const std::map<std::string, std::map<std::string, std::string>>& known_open_chec
          "(1.1 % between 6 and 8 cells in the full case; docs/theory.md §9.11)"}}},
       {"vpw-vertical-cut-footing",
        {{"residual_velocity_ratio", drainage}, {"contact_pressure_oddeven_ratio", plastic_edge}}},
+      {"ld-vertical-cut-footing", {{"contact_pressure_oddeven_ratio", dry_plastic_edge}}},
+      {"ld-strip-footing-bearing",
+       {{"contact_pressure_oddeven_ratio", dry_plastic_edge},
+        {"settlement_reached", punch_edge},
+        {"bearing_capacity_error",
+         "the run stops at 0.17 B (punch edge), so the line is fitted over 0.10-0.17 B only, where "
+         "the pressure already sags before the fold: intercept 1.054 (q/(2 + pi)c = 1.08 at "
+         "0.10 B, 1.12 at 0.15 B; docs/theory.md §9.12)"}}},
   };
   return checks;
 }

@@ -74,6 +74,8 @@ std::string kind_name(const BoundaryConditionSpec& condition) {
       return "traction";
     case BoundaryConditionSpec::Kind::Rotation:
       return "rotation";
+    case BoundaryConditionSpec::Kind::RigidWall:
+      return "rigid_wall";
     case BoundaryConditionSpec::Kind::PorePressure:
       break;
   }
@@ -334,6 +336,27 @@ BoundaryConditions::BoundaryConditions(
     }
   }
 
+  // Rigid walls: the nodes of their groups that touch them, here on the reference configuration
+  // and then at every move of the large-deformation model (follow_configuration).
+  for (int a = 0; a < d; ++a) velocity_field_[static_cast<std::size_t>(a)] = model.velocity_field(a);
+  contact_tolerance_ = 1e-6 * nodes.spacing;
+  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+    if (condition.kind != BoundaryConditionSpec::Kind::RigidWall) continue;
+    RigidWall wall;
+    double length = 0.0;
+    for (int a = 0; a < 3; ++a) length += condition.wall_normal[a] * condition.wall_normal[a];
+    length = std::sqrt(length);
+    for (std::size_t a = 0; a < 3; ++a) {
+      wall.point[a] = condition.wall_point[a];
+      wall.normal[a] = condition.wall_normal[a] / length;
+    }
+    wall.rough = condition.wall_rough;
+    wall.nodes = group_nodes(groups, condition);
+    wall.contact.assign(wall.nodes.size(), 0);
+    walls_.push_back(std::move(wall));
+  }
+  update_contacts(nodes.sph_nodes);
+
   // Velocities: rollers, then fixed and imposed in the order written.
   for (const auto& [axis, node] : rollers)
     velocity_constraints_.push_back({node, model.velocity_field(axis), zero, 1.0});
@@ -390,6 +413,54 @@ void BoundaryConditions::follow_configuration(const PointCloud& nodes) {
   // Built on the first call, while surface_ still holds the lattice facets and their normals.
   if (!perimeter_) perimeter_.emplace(nodes_, surface_);
   perimeter_->update(nodes, surface_);
+  update_contacts(nodes);
+}
+
+void BoundaryConditions::update_contacts(const PointCloud& positions) {
+  deepest_penetration_ = 0.0;
+  for (RigidWall& wall : walls_)
+    for (std::size_t k = 0; k < wall.nodes.size(); ++k) {
+      const auto node = static_cast<std::size_t>(wall.nodes[k]);
+      double distance = 0.0;  // from the plane, positive inside the body
+      for (int a = 0; a < dimension_; ++a)
+        distance += (positions.position[static_cast<std::size_t>(a)][node] -
+                     wall.point[static_cast<std::size_t>(a)]) *
+                    wall.normal[static_cast<std::size_t>(a)];
+      wall.contact[k] = distance <= contact_tolerance_ ? 1 : 0;
+      deepest_penetration_ = std::max(deepest_penetration_, -distance);
+    }
+}
+
+std::size_t BoundaryConditions::nodes_in_contact() const {
+  std::size_t count = 0;
+  for (const RigidWall& wall : walls_)
+    count += static_cast<std::size_t>(std::count(wall.contact.begin(), wall.contact.end(), 1));
+  return count;
+}
+
+void BoundaryConditions::impose_contacts(FieldArray& values,
+                                         std::span<const std::int32_t> node_to_row) const {
+  // A node on a wall may leave it but not move into it (v.n >= 0); on a rough wall it does not
+  // slip either, v = max(v.n, 0) n (docs/theory.md §9.13).
+  for (const RigidWall& wall : walls_)
+    for (std::size_t k = 0; k < wall.nodes.size(); ++k) {
+      if (!wall.contact[k]) continue;
+      const std::int32_t node = wall.nodes[k];
+      const std::int32_t row =
+          node_to_row.empty() ? node : node_to_row[static_cast<std::size_t>(node)];
+      if (row < 0) continue;
+      const auto r = static_cast<std::size_t>(row);
+      double normal_speed = 0.0;
+      for (int a = 0; a < dimension_; ++a)
+        normal_speed += values(velocity_field_[static_cast<std::size_t>(a)], r) *
+                        wall.normal[static_cast<std::size_t>(a)];
+      const double kept = std::max(normal_speed, 0.0);
+      for (int a = 0; a < dimension_; ++a) {
+        double& v = values(velocity_field_[static_cast<std::size_t>(a)], r);
+        const double n = wall.normal[static_cast<std::size_t>(a)];
+        v = wall.rough ? kept * n : v - (normal_speed - kept) * n;
+      }
+    }
 }
 
 void BoundaryConditions::replace_surface(const SurfaceSet& surface) {
@@ -511,6 +582,7 @@ void BoundaryConditions::apply(double time, FieldArray& values,
     store_stress(sigma, values, r);
   }
   impose(velocity_constraints_);
+  impose_contacts(values, node_to_row);
 }
 
 }  // namespace rktsph

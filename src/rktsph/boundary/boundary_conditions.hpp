@@ -66,6 +66,11 @@ class BoundaryConditions {
   /// roller shear), in no particular order.
   std::vector<std::pair<std::int32_t, int>> constrained_stress() const;
 
+  /// Nodes in contact with a rigid wall after the last update (docs/theory.md §9.13).
+  std::size_t nodes_in_contact() const;
+  /// The deepest penetration of a rigid wall by a node of its group after the last update [m].
+  double deepest_penetration() const { return deepest_penetration_; }
+
   /// True if velocity component `axis` of `node` is imposed.
   bool velocity_imposed(std::int32_t node, int axis) const {
     return (velocity_axes_[node] >> axis) & 1u;
@@ -84,7 +89,17 @@ class BoundaryConditions {
     Vector3 normal;
     std::array<int, 3> function;  // per global component, index into functions_; -1: not given
   };
+  /// A fixed plane its group's nodes may reach but not cross (docs/theory.md §9.13).
+  struct RigidWall {
+    Vector3 point{}, normal{};  // normal: unit, into the body
+    bool rough = true;
+    std::vector<std::int32_t> nodes;
+    std::vector<std::uint8_t> contact;  // per node of `nodes`: on or beyond the plane
+  };
   int add_function(const TimeFunction& f);
+  /// Marks the nodes of every wall's group that are on or beyond its plane at `positions`.
+  void update_contacts(const PointCloud& positions);
+  void impose_contacts(FieldArray& values, std::span<const std::int32_t> node_to_row) const;
   /// Marks the facets that velocity conditions act on: their imposed components are reactions,
   /// and a facet whose normal velocity is imposed is not projected.
   void classify(SurfaceSet& surface) const;
@@ -112,7 +127,11 @@ class BoundaryConditions {
   std::vector<int> drained_function_;
   int pore_pressure_field_ = -1;
   double biot_coefficient_ = 0.0;
-  std::vector<Constraint> velocity_constraints_;  // applied last: velocity wins
+  std::vector<Constraint> velocity_constraints_;  // then the velocities
+  std::vector<RigidWall> walls_;                  // and last the contacts
+  std::array<int, 3> velocity_field_{-1, -1, -1};
+  double contact_tolerance_ = 0.0;  // [m]: a node this close to a wall touches it
+  double deepest_penetration_ = 0.0;
 };
 
 }  // namespace rktsph

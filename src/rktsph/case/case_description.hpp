@@ -75,6 +75,7 @@ struct BoundaryConditionSpec {
     Traction,      ///< imposed traction components on the face (those given), others zero
     PorePressure,  ///< drained face: prescribed excess pore pressure (saturated model only)
     Rotation,      ///< both velocity components of a rigid rotation about `centre` (2D only)
+    RigidWall,     ///< contact with a fixed plane: no penetration; rough (no slip) or smooth
   };
   Kind kind = Kind::Velocity;
   std::string group;
@@ -85,6 +86,9 @@ struct BoundaryConditionSpec {
   bool mirror = true;  ///< Roller: fold mirror images into the operators (docs/theory.md §4.5)
   double angular_velocity = 0.0;  ///< Rotation: omega [rad/s], counter-clockwise positive, != 0
   Vec3 centre{};                  ///< Rotation: the fixed point [m]
+  Vec3 wall_point{};              ///< RigidWall: a point of the plane [m]
+  Vec3 wall_normal{};             ///< RigidWall: its normal, pointing into the body (any length)
+  bool wall_rough = true;         ///< RigidWall: no slip while in contact (else free slip)
   SourceLocation where;
 };
 

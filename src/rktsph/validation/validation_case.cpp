@@ -39,7 +39,6 @@ JsonValue checks_json(const std::vector<CheckResult>& checks) {
     item.set("tolerance", check.tolerance);
     item.set("unit", check.unit);
     item.set("passed", check.passed);
-    item.set("comparison", check.comparison);
     array.push_back(std::move(item));
   }
   return array;

@@ -46,7 +46,8 @@ struct CheckResult {
   std::string unit;        ///< "fraction", "deg", "s", "1", ...
   bool passed = false;
   /// How `tolerance` bounds `value`: "within" (|value - reference| <= tolerance), "at_most"
-  /// (value <= tolerance) or "at_least" (value >= tolerance).
+  /// (value <= tolerance) or "at_least" (value >= tolerance). Shown by the command line; not a
+  /// field of the JSON line, whose fields are a contract.
   std::string comparison = "within";
 };
 

@@ -10,8 +10,8 @@ namespace {
 
 using Condition = BoundaryConditionSpec;
 
-const std::vector<std::string> kKinds = {"velocity", "fixed",         "roller",
-                                         "traction", "pore_pressure", "rotation"};
+const std::vector<std::string> kKinds = {"velocity",      "fixed",    "roller",    "traction",
+                                         "pore_pressure", "rotation", "rigid_wall"};
 
 void read_roller(const YamlNode& kind, Condition& condition, Reading& reading) {
   const int dimension = reading.so_far.dimension;
@@ -50,6 +50,38 @@ void read_rotation(const YamlNode& node, Condition& condition, Reading& reading)
   reject_unless_2d(node, reading.so_far.dimension, "'rotation' conditions are");
   condition.kind = Condition::Kind::Rotation;
   read_keys(node, rotation_keys(), condition, reading);
+}
+
+/// The keys of a `rigid_wall` condition's map.
+const KeyTable<Condition>& rigid_wall_keys() {
+  static const KeyTable<Condition> keys = {
+      vector_key<Condition>("point", &Condition::wall_point, "m", "required",
+                            "A point of the wall's plane."),
+      Key<Condition>{"normal", "vector", "–", "required", "non-zero",
+                     "The plane's normal, pointing into the body (any length).", true,
+                     [](const YamlNode& node, Condition& condition, Reading& reading) {
+                       const Vec3 normal = read_vector(node, reading.so_far.dimension);
+                       if (normal[0] == 0.0 && normal[1] == 0.0 && normal[2] == 0.0)
+                         fail_at(node, "the wall's normal must not be zero",
+                                 "a non-zero vector pointing into the body, e.g. [0, 1]");
+                       condition.wall_normal = normal;
+                     },
+                     [](YAML::Emitter& out, const Condition& condition,
+                        const CaseDescription& description) {
+                       out << YAML::Key << "normal" << YAML::Value;
+                       emit_vector(out, condition.wall_normal, description.dimension);
+                     }},
+      choice_key<Condition, bool>("surface", &Condition::wall_rough,
+                                  {{"rough", true}, {"smooth", false}},
+                                  "rough: a node in contact does not slip; smooth: it slides "
+                                  "freely along the wall."),
+  };
+  return keys;
+}
+
+void read_rigid_wall(const YamlNode& node, Condition& condition, Reading& reading) {
+  condition.kind = Condition::Kind::RigidWall;
+  read_keys(node, rigid_wall_keys(), condition, reading);
 }
 
 /// Writes `name: value` when the condition is of `kind`.
@@ -134,6 +166,17 @@ const KeyTable<Condition>& condition_keys() {
             out << YAML::EndMap;
           }),
       section_key<Condition>(
+          "rigid_wall", "map", "one kind", "keys point, normal, surface",
+          "A fixed plane the group's nodes cannot cross (contact: a node on it cannot move into "
+          "it, and on a rough wall does not slip); it acts on whichever nodes reach it.",
+          read_rigid_wall,
+          [](YAML::Emitter& out, const Condition& condition, const CaseDescription& description) {
+            if (condition.kind != Condition::Kind::RigidWall) return;
+            out << YAML::Key << "rigid_wall" << YAML::Value << YAML::Flow << YAML::BeginMap;
+            emit_keys(out, rigid_wall_keys(), condition, description);
+            out << YAML::EndMap;
+          }),
+      section_key<Condition>(
           "mirror", "boolean", "true", "true, false; with roller only",
           "Fold mirror images of the neighbours into the operators (docs/theory.md §7.1).",
           [](const YamlNode& node, Condition& condition, Reading&) {
@@ -204,6 +247,7 @@ Key<CaseDescription> boundary_conditions_section() {
 void declare_boundary_condition_keys(std::vector<DeclaredKey>& list) {
   declare(list, "boundary_conditions[].", condition_keys());
   declare(list, "boundary_conditions[].rotation.", rotation_keys());
+  declare(list, "boundary_conditions[].rigid_wall.", rigid_wall_keys());
 }
 
 }  // namespace rktsph

@@ -169,7 +169,7 @@ std::vector<CheckResult> validate_ld_strip_footing_bearing(const ValidationConte
   if (context.report)
     report_bearing(*context.report, run, history, spacing, capacity, line, contact,
                    contact_ratio);
-  // bearing_capacity_error: validation.md §5.3.7, +5 %/-3 % after the rate correction (the
+  // bearing_capacity_error: +5 %/-3 % as the issue asks, after the rate correction (the
   // overstress is below 1 % here). contact_pressure_oddeven_ratio 5 % as the vertical cut.
   return {
       check_within("bearing_capacity_error", line.intercept / capacity - 1.0, 0.01, 0.04,
