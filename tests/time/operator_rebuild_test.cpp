@@ -3,7 +3,12 @@
 // previous build behind, and the step re-derives everything it takes from the tables.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "../support/elastic_block.hpp"
 #include "rktsph/case/case_reader.hpp"
@@ -59,6 +64,123 @@ TEST(OperatorRebuild, RebuiltEveryStepOnTheSameConfigurationGivesTheSameStepBitF
   expect_rebuilt_step_is_identical("{}");  // compact stencils, mean-velocity update, stiffness
   expect_rebuilt_step_is_identical("{h_over_dx: 1.3, courant: 0.5}");  // wide stencils
   expect_rebuilt_step_is_identical("{stress_update: half_step, hourglass: {stiffness: 0}}");
+}
+
+bool same_table(const WeightTable& a, const WeightTable& b) {
+  return a.dimension == b.dimension && a.row_start == b.row_start && a.source == b.source &&
+         a.reflection == b.reflection && a.interpolation == b.interpolation &&
+         a.gradient == b.gradient && a.has_reflections == b.has_reflections &&
+         a.has_gradient == b.has_gradient && a.weight_start == b.weight_start &&
+         a.row_reflects == b.row_reflects;
+}
+
+// Every array of the operators, with where its data lives and its capacity.
+std::vector<std::pair<const void*, std::size_t>> buffers(const StepOperators& ops) {
+  std::vector<std::pair<const void*, std::size_t>> result;
+  auto add = [&](const auto& vector) { result.emplace_back(vector.data(), vector.capacity()); };
+  for (const WeightTable* t :
+       {&ops.nodes_to_points, &ops.points_to_nodes, &ops.boundary_gradient,
+        &ops.incomplete_closure.table, &ops.filter_to_points, &ops.filter_to_nodes}) {
+    add(t->row_start);
+    add(t->source);
+    add(t->reflection);
+    add(t->interpolation);
+    for (const auto& g : t->gradient)
+      add(g);
+    add(t->weight_start);
+    add(t->row_reflects);
+  }
+  add(ops.boundary_nodes);
+  add(ops.node_to_boundary_row);
+  add(ops.incomplete_nodes);
+  add(ops.incomplete_closure.target);
+  add(ops.incomplete_closure.self_column);
+  add(ops.incomplete_closure.lumped_volume);
+  return result;
+}
+
+// On a moving configuration the one builder of the step rebuilds its tables in place, in parallel
+// rows, without computing what a fixed topology does not change: the tables must be those a fresh
+// builder makes on the same configuration, bit for bit, and from the second rebuild on no array
+// may be reallocated.
+TEST(OperatorRebuild, RebuildsOnMovedConfigurationsEqualFreshBuildsAndDoNotReallocate) {
+  for (const std::string numerics : {"{}", "{h_over_dx: 1.3, courant: 0.5}"}) {
+    Simulation moving(
+        read_case_text(loaded_cut(numerics), "cut.yaml", {{"model", "dry_large_deformation"}}));
+    const BoundaryConditions& conditions = moving.boundary_conditions();
+    const StepOptions& options = moving.step().options();
+    StepOperatorBuilder reused(moving.nodes(), options, conditions.mirror_planes(),
+                               conditions.mirror_axes());
+    StepOperators rebuilt;
+    std::vector<std::pair<const void*, std::size_t>> second;
+    for (int build = 0; build < 4; ++build) {
+      for (int s = 0; s < 10; ++s)
+        moving.step().advance(moving.state(), moving.time_step());
+      const Configuration& configuration = moving.state().configuration;
+      reused.build(configuration, rebuilt);
+      StepOperatorBuilder fresh(moving.nodes(), options, conditions.mirror_planes(),
+                                conditions.mirror_axes());
+      StepOperators expected;
+      fresh.build(configuration, expected);
+      SCOPED_TRACE(numerics + ", build " + std::to_string(build));
+      EXPECT_TRUE(same_table(rebuilt.nodes_to_points, expected.nodes_to_points));
+      EXPECT_TRUE(same_table(rebuilt.points_to_nodes, expected.points_to_nodes));
+      EXPECT_TRUE(same_table(rebuilt.boundary_gradient, expected.boundary_gradient));
+      EXPECT_TRUE(same_table(rebuilt.incomplete_closure.table, expected.incomplete_closure.table));
+      EXPECT_EQ(rebuilt.incomplete_closure.lumped_volume,
+                expected.incomplete_closure.lumped_volume);
+      EXPECT_EQ(rebuilt.incomplete_closure.self_column, expected.incomplete_closure.self_column);
+      EXPECT_TRUE(same_table(rebuilt.filter_to_points, expected.filter_to_points));
+      EXPECT_TRUE(same_table(rebuilt.filter_to_nodes, expected.filter_to_nodes));
+      EXPECT_EQ(rebuilt.boundary_nodes, expected.boundary_nodes);
+      EXPECT_EQ(rebuilt.incomplete_nodes, expected.incomplete_nodes);
+      EXPECT_EQ(rebuilt.compact_stencils, expected.compact_stencils);
+      EXPECT_FALSE(rebuilt.filter_to_nodes.has_gradient);
+      EXPECT_FALSE(rebuilt.filter_to_nodes.weight_start.empty());
+      if (build == 1) second = buffers(rebuilt);
+      if (build > 1) {
+        EXPECT_EQ(buffers(rebuilt), second) << "an array was reallocated";
+      }
+    }
+    double largest_displacement = 0.0;
+    for (const double u : moving.state().displacement.data())
+      largest_displacement = std::max(largest_displacement, std::abs(u));
+    EXPECT_GT(largest_displacement, 0.0) << "the configuration must move";
+  }
+}
+
+// The row-parallel table builders give the tables of append_row, row by row, on a lattice large
+// enough for the parallel loops (above kParallelThreshold rows).
+TEST(OperatorRebuild, ParallelCrossOperatorEqualsRowByRowAppend) {
+  test::ElasticBlock block;  // the cut of loaded_cut, finer, with its mirror side
+  block.spacing = 0.1;
+  block.shapes = "[{polygon: [[0, 0], [12, 0], [12, 3], [6, 3], [6, 8], [0, 8]], material: soil}]";
+  block.conditions = {"{group: xmin, roller: x, mirror: true}", "{group: ymin, fixed: true}"};
+  block.numerics = "{h_over_dx: 1.3, courant: 0.5}";
+  Simulation simulation(block.description());
+  const Configuration& configuration = simulation.state().configuration;
+  const OperatorOptions& options = simulation.step().operator_options();
+  const CellList cells(configuration.sph_nodes,
+                       options.kernel.support_radius(options.smoothing_length));
+  WeightTable serial;
+  reset_table(serial, 2);
+  std::vector<StencilSource> stencil;
+  for (std::size_t p = 0; p < configuration.stress_points.size(); ++p) {
+    const auto x = configuration.stress_points.point(p);
+    gather_stencil(x, cells, options, -1, stencil);
+    append_row(serial, x, stencil, options, GradientReference::ShepardCentroid, -1);
+  }
+  ASSERT_TRUE(serial.has_reflections);
+  ASSERT_GT(static_cast<std::int64_t>(serial.rows()), kParallelThreshold);
+  WeightTable parallel;
+  OperatorWorkspace workspace;
+  build_cross_operator(configuration.stress_points, cells, options, parallel, workspace);
+  EXPECT_TRUE(same_table(parallel, serial));
+  // Interpolation only: the weights of the full table without its gradients.
+  build_cross_operator(configuration.stress_points, cells, options, parallel, workspace, nullptr,
+                       TableWeights::InterpolationOnly);
+  drop_gradients(serial);
+  EXPECT_TRUE(same_table(parallel, serial));
 }
 
 TEST(OperatorRebuild, ClassifiesBoundaryNodesFromTheCellsAroundThem) {

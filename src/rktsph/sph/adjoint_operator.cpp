@@ -6,10 +6,35 @@
 
 namespace rktsph {
 
+namespace {
+
+// Calls visit(p, k, row) for every entry k of forward row p whose column is a target node (its
+// adjoint row `row`), in forward-row order.
+template <class Visit>
+void for_each_target_entry(const WeightTable& forward, const std::vector<std::int32_t>& row_of,
+                           Visit&& visit) {
+  for (std::size_t p = 0; p < forward.rows(); ++p)
+    for (auto k = static_cast<std::size_t>(forward.row_start[p]);
+         k < static_cast<std::size_t>(forward.row_start[p + 1]); ++k) {
+      const std::int32_t r = row_of[static_cast<std::size_t>(forward.source[k])];
+      if (r >= 0) visit(p, k, static_cast<std::size_t>(r));
+    }
+}
+
+}  // namespace
+
 AdjointOperator build_adjoint_operator(const WeightTable& forward,
                                        std::span<const double> row_volume,
                                        std::span<const std::int32_t> target,
                                        std::span<const std::int32_t> self_column) {
+  AdjointOperator adjoint;
+  build_adjoint_operator(forward, row_volume, target, self_column, adjoint);
+  return adjoint;
+}
+
+void build_adjoint_operator(const WeightTable& forward, std::span<const double> row_volume,
+                            std::span<const std::int32_t> target,
+                            std::span<const std::int32_t> self_column, AdjointOperator& adjoint) {
   if (!forward.weight_start.empty() || !forward.has_gradient ||
       row_volume.size() != forward.rows() || self_column.size() != target.size())
     throw std::invalid_argument("build_adjoint_operator: inconsistent forward table or sizes");
@@ -19,57 +44,54 @@ AdjointOperator build_adjoint_operator(const WeightTable& forward,
     columns = std::max(columns, s + 1);
   for (std::int32_t n : target)
     columns = std::max(columns, n + 1);
-  std::vector<std::int32_t> row_of(static_cast<std::size_t>(columns), -1);
+  std::vector<std::int32_t>& row_of = adjoint.row_of;
+  row_of.assign(static_cast<std::size_t>(columns), -1);
   for (std::size_t r = 0; r < target.size(); ++r)
     row_of[static_cast<std::size_t>(target[r])] = static_cast<std::int32_t>(r);
 
-  // Entries of each target, in forward-row order, weighted by the volume of their row.
-  struct Entry {
-    std::int32_t point;
-    std::uint8_t reflection;
-    double gradient[3];
-    double interpolation;
-  };
-  std::vector<std::vector<Entry>> entries(target.size());
-  AdjointOperator adjoint;
-  adjoint.lumped_volume.assign(target.size(), 0.0);
-  for (std::size_t p = 0; p < forward.rows(); ++p)
-    for (auto k = static_cast<std::size_t>(forward.row_start[p]);
-         k < static_cast<std::size_t>(forward.row_start[p + 1]); ++k) {
-      const std::int32_t r = row_of[static_cast<std::size_t>(forward.source[k])];
-      if (r < 0) continue;
-      const auto row = static_cast<std::size_t>(r);
-      Entry e{static_cast<std::int32_t>(p),
-              forward.has_reflections ? forward.reflection[k] : std::uint8_t{0},
-              {0.0, 0.0, 0.0},
-              row_volume[p] * forward.interpolation[k]};
-      adjoint.lumped_volume[row] += e.interpolation;
-      for (int c = 0; c < d; ++c)
-        e.gradient[c] = -row_volume[p] * forward.gradient[static_cast<std::size_t>(c)][k];
-      entries[row].push_back(e);
-    }
-
+  // A transpose by counting sort: count each target's entries and sum its lumped volume in
+  // forward-row order, then place the entries in that same order (the order, and the sums, of
+  // the per-target lists this replaces).
   WeightTable& table = adjoint.table;
   table.dimension = d;
-  table.row_start.assign(1, 0);
+  table.row_start.assign(target.size() + 1, 0);
+  adjoint.lumped_volume.assign(target.size(), 0.0);
+  for_each_target_entry(forward, row_of, [&](std::size_t p, std::size_t k, std::size_t row) {
+    ++table.row_start[row + 1];
+    adjoint.lumped_volume[row] += row_volume[p] * forward.interpolation[k];
+  });
   for (std::size_t r = 0; r < target.size(); ++r) {
     const double volume = adjoint.lumped_volume[r];
-    if (entries[r].empty() || !(volume > 0.0))
+    if (table.row_start[r + 1] == 0 || !(volume > 0.0))
       throw std::invalid_argument("build_adjoint_operator: node " + std::to_string(target[r]) +
                                   " is in no forward row (zero lumped volume)");
-    for (const Entry& e : entries[r]) {
-      table.source.push_back(e.point);
-      table.reflection.push_back(e.reflection);
-      table.has_reflections = table.has_reflections || e.reflection != 0;
-      table.interpolation.push_back(e.interpolation / volume);
-      for (int c = 0; c < d; ++c)
-        table.gradient[static_cast<std::size_t>(c)].push_back(e.gradient[c] / volume);
-    }
-    table.row_start.push_back(static_cast<std::int64_t>(table.source.size()));
+    table.row_start[r + 1] += table.row_start[r];
   }
+  const auto entries = static_cast<std::size_t>(table.row_start.back());
+  table.source.resize(entries);
+  table.reflection.resize(entries);
+  table.interpolation.resize(entries);
+  for (int c = 0; c < 3; ++c)
+    table.gradient[static_cast<std::size_t>(c)].resize(c < d ? entries : 0);
+  table.has_reflections = false;
+  table.has_gradient = true;
+  table.weight_start.clear();
+  table.row_reflects.clear();
+  adjoint.cursor.assign(table.row_start.begin(), table.row_start.end() - 1);
+  for_each_target_entry(forward, row_of, [&](std::size_t p, std::size_t k, std::size_t row) {
+    const auto e = static_cast<std::size_t>(adjoint.cursor[row]++);
+    const double volume = adjoint.lumped_volume[row];
+    const std::uint8_t reflection = forward.has_reflections ? forward.reflection[k] : 0;
+    table.source[e] = static_cast<std::int32_t>(p);
+    table.reflection[e] = reflection;
+    table.has_reflections = table.has_reflections || reflection != 0;
+    table.interpolation[e] = row_volume[p] * forward.interpolation[k] / volume;
+    for (int c = 0; c < d; ++c)
+      table.gradient[static_cast<std::size_t>(c)][e] =
+          -row_volume[p] * forward.gradient[static_cast<std::size_t>(c)][k] / volume;
+  });
   adjoint.target.assign(target.begin(), target.end());
   adjoint.self_column.assign(self_column.begin(), self_column.end());
-  return adjoint;
 }
 
 void add_adjoint_interpolation(const AdjointOperator& adjoint, const FieldArray& in,

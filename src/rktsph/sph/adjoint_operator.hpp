@@ -35,6 +35,9 @@ struct AdjointOperator {
   std::vector<std::int32_t> target;       ///< node of each row
   std::vector<std::int32_t> self_column;  ///< column of the node's own value in `in`, or -1
   std::vector<double> lumped_volume;      ///< V_n of each row
+  /// Scratch of a rebuild in place (the forward column -> row map, the rows' fill positions).
+  std::vector<std::int32_t> row_of;
+  std::vector<std::int64_t> cursor;
 };
 
 /// Transposes the interpolation and gradient of `forward` (rows with volumes `row_volume`) onto
@@ -45,6 +48,12 @@ AdjointOperator build_adjoint_operator(const WeightTable& forward,
                                        std::span<const double> row_volume,
                                        std::span<const std::int32_t> target,
                                        std::span<const std::int32_t> self_column);
+
+/// The same into an existing operator, reusing its arrays: a rebuild of the same size allocates
+/// nothing (the large-deformation step rebuilds it every step).
+void build_adjoint_operator(const WeightTable& forward, std::span<const double> row_volume,
+                            std::span<const std::int32_t> target,
+                            std::span<const std::int32_t> self_column, AdjointOperator& adjoint);
 
 /// Adds the adjoint interpolation of every field f of `in` (values on the stress points) with
 /// `selected[f]` to `out` (point = target node). A reflected entry enters with parity[f].

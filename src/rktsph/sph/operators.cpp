@@ -7,10 +7,8 @@
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
-#include <string>
 #include <tuple>
 #include <type_traits>
-#include <unordered_map>
 
 namespace rktsph {
 
@@ -66,6 +64,11 @@ Vector reflect(Vector x, const std::vector<MirrorPlane>& mirrors, unsigned subse
 
 }  // namespace
 
+void check_mirror_count(const OperatorOptions& options) {
+  if (options.mirrors.size() > 8)
+    throw std::invalid_argument("at most 8 mirror planes are supported");
+}
+
 void gather_stencil(const Vector& target, const CellList& cells, const OperatorOptions& options,
                     std::int32_t exclude, std::vector<StencilSource>& stencil) {
   stencil.clear();
@@ -73,7 +76,7 @@ void gather_stencil(const Vector& target, const CellList& cells, const OperatorO
   const double on_plane_tolerance = 1e-8 * options.smoothing_length;
   const PointCloud& sources = cells.points();
   const auto& mirrors = options.mirrors;
-  if (mirrors.size() > 8) throw std::invalid_argument("at most 8 mirror planes are supported");
+  check_mirror_count(options);
 
   for (unsigned subset = 0; subset < (1u << mirrors.size()); ++subset) {
     // A set of planes contributes images only if the target is within the support of each.
@@ -100,19 +103,21 @@ void gather_stencil(const Vector& target, const CellList& cells, const OperatorO
   }
 }
 
-bool append_row(WeightTable& table, const Vector& target, std::span<const StencilSource> stencil,
-                const OperatorOptions& options, GradientReference reference,
-                std::int32_t self_column) {
-  const int d = table.dimension;
+bool compute_row(int dimension, const Vector& target, std::span<const StencilSource> stencil,
+                 const OperatorOptions& options, GradientReference reference,
+                 std::int32_t self_column, const RowSlots& slots) {
+  const int d = dimension;
   const Kernel& kernel = options.kernel;
   const double h = options.smoothing_length;
   const std::size_t n = stencil.size();
-  const std::size_t first = table.source.size();
+  double* interpolation = slots.interpolation;
+  const std::array<double*, 3>& gradient = slots.gradient;
 
   // Kernel values w_b = W V_b and gradients g_b = grad_a W(x_a - x_b) V_b (docs/theory.md eq. 4.2).
   double weight_sum = 0.0;
   Vector gradient_sum{};
-  for (const StencilSource& s : stencil) {
+  for (std::size_t k = 0; k < n; ++k) {
+    const StencilSource& s = stencil[k];
     Vector offset{};
     double r2 = 0.0;
     for (int a = 0; a < d; ++a) {
@@ -121,15 +126,14 @@ bool append_row(WeightTable& table, const Vector& target, std::span<const Stenci
     }
     const double w = kernel.value(std::sqrt(r2), h) * s.volume;
     const Vector g = kernel.gradient(offset, h);
-    table.source.push_back(s.column);
-    table.reflection.push_back(s.reflection);
-    table.interpolation.push_back(w);
+    slots.source[k] = s.column;
+    slots.reflection[k] = s.reflection;
+    interpolation[k] = w;
     for (int a = 0; a < 3; ++a)
-      table.gradient[a].push_back(a < d ? g[a] * s.volume : 0.0);
+      if (gradient[a]) gradient[a][k] = a < d ? g[a] * s.volume : 0.0;
     weight_sum += w;
     for (int a = 0; a < d; ++a)
       gradient_sum[a] += g[a] * s.volume;
-    if (s.reflection) table.has_reflections = true;
   }
 
   // Reference point: the Shepard centroid (cross-set) or the target itself (self-referenced).
@@ -138,7 +142,7 @@ bool append_row(WeightTable& table, const Vector& target, std::span<const Stenci
     reference_point = {0.0, 0.0, 0.0};
     for (std::size_t k = 0; k < n; ++k)
       for (int a = 0; a < d; ++a)
-        reference_point[a] += table.interpolation[first + k] / weight_sum * stencil[k].position[a];
+        reference_point[a] += interpolation[k] / weight_sum * stencil[k].position[a];
   }
 
   // Correction matrix A = sum_b g_b (x_b - x_ref)^T and its scale sum_b |g_b||x_b - x_ref|.
@@ -147,7 +151,7 @@ bool append_row(WeightTable& table, const Vector& target, std::span<const Stenci
   for (std::size_t k = 0; k < n; ++k) {
     double g_norm = 0.0, x_norm = 0.0;
     for (int a = 0; a < d; ++a) {
-      const double g = table.gradient[a][first + k];
+      const double g = gradient[a][k];
       g_norm += g * g;
       x_norm += std::pow(stencil[k].position[a] - reference_point[a], 2);
       for (int b = 0; b < d; ++b)
@@ -169,19 +173,18 @@ bool append_row(WeightTable& table, const Vector& target, std::span<const Stenci
 
   // Gradient weights K_b = A^-1 (g_b - G w^_b) (centroid) or A^-1 g_b (self).
   for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t e = first + k;
-    const double shepard = weight_sum > 0.0 ? table.interpolation[e] / weight_sum : 0.0;
+    const double shepard = weight_sum > 0.0 ? interpolation[k] / weight_sum : 0.0;
     Vector raw{};
     for (int a = 0; a < d; ++a)
-      raw[a] = table.gradient[a][e] -
+      raw[a] = gradient[a][k] -
                (reference == GradientReference::ShepardCentroid ? gradient_sum[a] * shepard : 0.0);
     for (int a = 0; a < d; ++a) {
       double value = 0.0;
       for (int b = 0; b < d; ++b)
         value += inverse_correction[a][b] * raw[b];
-      table.gradient[a][e] = value;
+      gradient[a][k] = value;
     }
-    table.interpolation[e] = shepard;
+    interpolation[k] = shepard;
   }
 
   if (reference == GradientReference::ShepardCentroid) {
@@ -189,23 +192,89 @@ bool append_row(WeightTable& table, const Vector& target, std::span<const Stenci
     if (options.interpolation_order == 1 && regular)
       for (std::size_t k = 0; k < n; ++k)
         for (int a = 0; a < d; ++a)
-          table.interpolation[first + k] -=
-              (reference_point[a] - target[a]) * table.gradient[a][first + k];
+          interpolation[k] -= (reference_point[a] - target[a]) * gradient[a][k];
   } else {
     // Self column: its value is the reference, so its weight cancels the others' sum.
     Vector self_gradient{};
     for (std::size_t k = 0; k < n; ++k) {
-      table.interpolation[first + k] = 0.0;
+      interpolation[k] = 0.0;
       for (int a = 0; a < d; ++a)
-        self_gradient[a] -= table.gradient[a][first + k];
+        self_gradient[a] -= gradient[a][k];
     }
-    table.source.push_back(self_column);
-    table.reflection.push_back(0);
-    table.interpolation.push_back(1.0);
+    slots.source[n] = self_column;
+    slots.reflection[n] = 0;
+    interpolation[n] = 1.0;
     for (int a = 0; a < 3; ++a)
-      table.gradient[a].push_back(self_gradient[a]);
+      if (gradient[a]) gradient[a][n] = self_gradient[a];
   }
-  table.row_start.push_back(static_cast<std::int64_t>(table.source.size()));
+  return regular;
+}
+
+namespace {
+
+// Scratch for one row whose weights are not kept (row_is_regular) or whose gradient weights are
+// not kept (an interpolation-only table): on the stack for the stencils of the step and the
+// filter (up to ~50 entries with mirror images), on the heap beyond.
+class RowScratch {
+ public:
+  explicit RowScratch(std::size_t size) {
+    if (size > kStack) {
+      heap_source_.resize(size);
+      heap_reflection_.resize(size);
+      heap_values_.resize(4 * size);
+    }
+    const bool stack = size <= kStack;
+    slots_.source = stack ? source_ : heap_source_.data();
+    slots_.reflection = stack ? reflection_ : heap_reflection_.data();
+    double* values = stack ? values_ : heap_values_.data();
+    const std::size_t stride = stack ? kStack : size;
+    slots_.interpolation = values;
+    for (std::size_t a = 0; a < 3; ++a)
+      slots_.gradient[a] = values + (a + 1) * stride;
+  }
+  const RowSlots& slots() const { return slots_; }
+
+ private:
+  static constexpr std::size_t kStack = 128;
+  std::int32_t source_[kStack];
+  std::uint8_t reflection_[kStack];
+  double values_[4 * kStack];
+  std::vector<std::int32_t> heap_source_;
+  std::vector<std::uint8_t> heap_reflection_;
+  std::vector<double> heap_values_;
+  RowSlots slots_;
+};
+
+}  // namespace
+
+bool row_is_regular(int dimension, const Vector& target, std::span<const StencilSource> stencil,
+                    const OperatorOptions& options, GradientReference reference,
+                    std::int32_t self_column) {
+  const RowScratch scratch(row_size(stencil.size(), reference));
+  return compute_row(dimension, target, stencil, options, reference, self_column, scratch.slots());
+}
+
+bool append_row(WeightTable& table, const Vector& target, std::span<const StencilSource> stencil,
+                const OperatorOptions& options, GradientReference reference,
+                std::int32_t self_column) {
+  const std::size_t first = table.source.size();
+  const std::size_t size = first + row_size(stencil.size(), reference);
+  table.source.resize(size);
+  table.reflection.resize(size);
+  table.interpolation.resize(size);
+  RowSlots slots{table.source.data() + first,
+                 table.reflection.data() + first,
+                 table.interpolation.data() + first,
+                 {}};
+  for (std::size_t a = 0; a < 3; ++a) {
+    table.gradient[a].resize(size);
+    slots.gradient[a] = table.gradient[a].data() + first;
+  }
+  const bool regular =
+      compute_row(table.dimension, target, stencil, options, reference, self_column, slots);
+  for (const StencilSource& s : stencil)
+    if (s.reflection) table.has_reflections = true;
+  table.row_start.push_back(static_cast<std::int64_t>(size));
   return regular;
 }
 
@@ -224,48 +293,108 @@ void reset_table(WeightTable& table, int dimension) {
   table.row_reflects.clear();
 }
 
+void compute_rows(int dimension, const OperatorOptions& options, TableWeights weights,
+                  WeightTable& table, OperatorWorkspace& workspace) {
+  const std::size_t row_count = table.row_start.size() - 1;
+  std::partial_sum(table.row_start.begin(), table.row_start.end(), table.row_start.begin());
+  const auto entries = static_cast<std::size_t>(table.row_start.back());
+  const bool keep_gradient = weights == TableWeights::InterpolationAndGradient;
+  table.dimension = dimension;
+  // resize, not clear + resize: a table of the same size is neither freed nor refilled.
+  table.source.resize(entries);
+  table.reflection.resize(entries);
+  table.interpolation.resize(entries);
+  for (auto& g : table.gradient)
+    g.resize(keep_gradient ? entries : 0);
+  table.has_gradient = keep_gradient;
+  table.weight_start.clear();
+  table.row_reflects.clear();
+  workspace.regular.resize(row_count);
+
+  const auto rows = static_cast<std::int64_t>(row_count);
+  bool reflections = false;
+#pragma omp parallel for schedule(static) reduction(|| : reflections) if (rows > kParallelThreshold)
+  for (std::int64_t r = 0; r < rows; ++r) {
+    const auto row = static_cast<std::size_t>(r);
+    const std::span<const StencilSource> stencil = workspace.stencils[row];
+    const RowTarget& target = workspace.targets[row];
+    const auto first = static_cast<std::size_t>(table.row_start[row]);
+    RowSlots slots{table.source.data() + first,
+                   table.reflection.data() + first,
+                   table.interpolation.data() + first,
+                   {}};
+    bool regular;
+    if (keep_gradient) {
+      for (std::size_t a = 0; a < 3; ++a)
+        slots.gradient[a] = table.gradient[a].data() + first;
+      regular = compute_row(dimension, target.position, stencil, options, target.reference,
+                            target.self_column, slots);
+    } else {
+      const RowScratch scratch(row_size(stencil.size(), target.reference));
+      slots.gradient = scratch.slots().gradient;
+      regular = compute_row(dimension, target.position, stencil, options, target.reference,
+                            target.self_column, slots);
+    }
+    workspace.regular[row] = regular ? 1 : 0;
+    for (const StencilSource& s : stencil)
+      reflections = reflections || s.reflection != 0;
+  }
+  table.has_reflections = reflections;
+}
+
+namespace {
+
+void report_degenerate(const OperatorWorkspace& workspace, std::size_t rows,
+                       StencilReport* report) {
+  if (!report) return;
+  for (std::size_t r = 0; r < rows; ++r)
+    if (!workspace.regular[r]) report->degenerate_rows.push_back(static_cast<std::int32_t>(r));
+}
+
+}  // namespace
+
 void build_cross_operator(const PointCloud& targets, const CellList& sources,
                           const OperatorOptions& options, WeightTable& table,
-                          std::vector<StencilSource>& stencil, StencilReport* report) {
-  reset_table(table, targets.dimension);
-  for (std::size_t i = 0; i < targets.size(); ++i) {
-    const Vector x = targets.point(i);
-    gather_stencil(x, sources, options, -1, stencil);
-    const bool regular =
-        append_row(table, x, stencil, options, GradientReference::ShepardCentroid, -1);
-    if (!regular && report) report->degenerate_rows.push_back(static_cast<std::int32_t>(i));
-  }
+                          OperatorWorkspace& workspace, StencilReport* report,
+                          TableWeights weights) {
+  build_rows(targets.size(), targets.dimension, options, weights, table, workspace,
+             [&](std::size_t i, std::vector<StencilSource>& stencil) {
+               const Vector x = targets.point(i);
+               gather_stencil(x, sources, options, -1, stencil);
+               return RowTarget{x, GradientReference::ShepardCentroid, -1};
+             });
+  report_degenerate(workspace, targets.size(), report);
 }
 
 WeightTable build_cross_operator(const PointCloud& targets, const CellList& sources,
                                  const OperatorOptions& options, StencilReport* report) {
   WeightTable table;
-  std::vector<StencilSource> stencil;
-  build_cross_operator(targets, sources, options, table, stencil, report);
+  OperatorWorkspace workspace;
+  build_cross_operator(targets, sources, options, table, workspace, report);
   return table;
 }
 
 void build_collocated_gradient(const PointCloud& points, const CellList& cells,
                                const OperatorOptions& options, std::span<const std::int32_t> rows,
-                               WeightTable& table, std::vector<StencilSource>& stencil,
+                               WeightTable& table, OperatorWorkspace& workspace,
                                StencilReport* report) {
-  reset_table(table, points.dimension);
   const std::size_t row_count = rows.empty() ? points.size() : rows.size();
-  for (std::size_t r = 0; r < row_count; ++r) {
-    const auto self = rows.empty() ? static_cast<std::int32_t>(r) : rows[r];
-    const Vector x = points.point(static_cast<std::size_t>(self));
-    gather_stencil(x, cells, options, self, stencil);
-    const bool regular = append_row(table, x, stencil, options, GradientReference::Self, self);
-    if (!regular && report) report->degenerate_rows.push_back(static_cast<std::int32_t>(r));
-  }
+  build_rows(row_count, points.dimension, options, TableWeights::InterpolationAndGradient, table,
+             workspace, [&](std::size_t r, std::vector<StencilSource>& stencil) {
+               const auto self = rows.empty() ? static_cast<std::int32_t>(r) : rows[r];
+               const Vector x = points.point(static_cast<std::size_t>(self));
+               gather_stencil(x, cells, options, self, stencil);
+               return RowTarget{x, GradientReference::Self, self};
+             });
+  report_degenerate(workspace, row_count, report);
 }
 
 WeightTable build_collocated_gradient(const PointCloud& points, const CellList& cells,
                                       const OperatorOptions& options,
                                       std::span<const std::int32_t> rows, StencilReport* report) {
   WeightTable table;
-  std::vector<StencilSource> stencil;
-  build_collocated_gradient(points, cells, options, rows, table, stencil, report);
+  OperatorWorkspace workspace;
+  build_collocated_gradient(points, cells, options, rows, table, workspace, report);
   return table;
 }
 
@@ -488,58 +617,123 @@ void apply_interpolation_interleaved(const WeightTable& table, std::span<const d
 }
 
 void share_row_weights(WeightTable& table) {
+  ShareWorkspace workspace;
+  share_row_weights(table, workspace);
+}
+
+namespace {
+
+// One step of a row key's hash: a quantised weight and its reflection bits mixed in with one
+// multiplication (the key is confirmed entry by entry on a match, so the hash need only spread).
+std::uint64_t hash_entry(std::uint64_t hash, std::int64_t quantised, std::uint8_t reflection) {
+  hash ^= static_cast<std::uint64_t>(quantised) + (std::uint64_t{reflection} << 56);
+  hash *= 0x9e3779b97f4a7c15ull;
+  return hash ^ (hash >> 29);
+}
+
+}  // namespace
+
+void share_row_weights(WeightTable& table, ShareWorkspace& workspace) {
   if (table.has_gradient)
     throw std::invalid_argument("share_row_weights: the table still holds gradient weights");
   if (!table.weight_start.empty()) return;  // already shared
-  const std::size_t rows = table.rows();
-  std::vector<double> pool;
-  std::vector<std::uint8_t> pool_reflection;
-  std::vector<std::int64_t> start(rows);
-  table.row_reflects.assign(rows, 0);
-  std::unordered_map<std::string, std::int64_t> known;  // quantised stencil -> pool offset
-  std::vector<std::int64_t> order;
-  std::string key;
-  for (std::size_t i = 0; i < rows; ++i) {
-    const std::int64_t begin = table.row_start[i], end = table.row_start[i + 1];
-    order.resize(static_cast<std::size_t>(end - begin));
-    std::iota(order.begin(), order.end(), begin);
-    std::sort(order.begin(), order.end(), [&](std::int64_t a, std::int64_t b) {
+  const std::size_t row_count = table.rows();
+  const std::size_t entries = table.entries();
+  const auto rows = static_cast<std::int64_t>(row_count);
+  ShareWorkspace& w = workspace;
+  w.order.resize(entries);
+  w.source.resize(entries);
+  w.reflection.resize(entries);
+  w.weight.resize(entries);
+  w.quantised.resize(entries);
+  w.hash.resize(row_count);
+  w.owner.resize(row_count);
+  table.row_reflects.resize(row_count);
+  table.weight_start.resize(row_count);
+
+  // Each row on its own, in parallel: order its entries by source (the same std::sort on the same
+  // index sequence as a serial pass, so ties fall alike), then its key: the reflection bits and
+  // the weights rounded to 1e-13 of the largest one. Rows that round alike differ by less than
+  // that and share the first one's weights.
+#pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
+  for (std::int64_t i = 0; i < rows; ++i) {
+    const auto row = static_cast<std::size_t>(i);
+    const std::int64_t begin = table.row_start[row], end = table.row_start[row + 1];
+    const auto order = w.order.begin() + begin;
+    std::iota(order, w.order.begin() + end, begin);
+    std::sort(order, w.order.begin() + end, [&](std::int64_t a, std::int64_t b) {
       return std::tie(table.source[a], table.reflection[a]) <
              std::tie(table.source[b], table.reflection[b]);
     });
-    // Reorder the row's entries in place by source.
-    std::vector<std::int32_t> source(order.size());
-    std::vector<std::uint8_t> reflection(order.size());
-    std::vector<double> weight(order.size());
     double largest = 0.0;
-    for (std::size_t k = 0; k < order.size(); ++k) {
-      source[k] = table.source[order[k]];
-      reflection[k] = table.reflection[order[k]];
-      weight[k] = table.interpolation[order[k]];
-      largest = std::max(largest, std::abs(weight[k]));
+    bool reflects = false;
+    for (std::int64_t k = begin; k < end; ++k) {
+      const auto e = static_cast<std::size_t>(w.order[k]);
+      w.source[k] = table.source[e];
+      w.reflection[k] = table.reflection[e];
+      w.weight[k] = table.interpolation[e];
+      largest = std::max(largest, std::abs(w.weight[k]));
+      reflects = reflects || w.reflection[k] != 0;
     }
-    std::copy(source.begin(), source.end(), table.source.begin() + begin);
-    // Key: the reflection bits and the weights rounded to 1e-13 of the largest one. Rows that
-    // round alike differ by less than that and share the first one's weights.
-    key.clear();
     const double quantum = 1e-13 * (largest > 0.0 ? largest : 1.0);
-    for (std::size_t k = 0; k < order.size(); ++k) {
-      const auto rounded = static_cast<std::int64_t>(std::llround(weight[k] / quantum));
-      key.append(reinterpret_cast<const char*>(&rounded), sizeof rounded);
-      key.push_back(static_cast<char>(reflection[k]));
+    std::uint64_t hash = static_cast<std::uint64_t>(end - begin);
+    for (std::int64_t k = begin; k < end; ++k) {
+      w.quantised[k] = static_cast<std::int64_t>(std::llround(w.weight[k] / quantum));
+      hash = hash_entry(hash, w.quantised[k], w.reflection[k]);
     }
-    const auto [found, inserted] = known.try_emplace(key, static_cast<std::int64_t>(pool.size()));
-    if (inserted) {
-      pool.insert(pool.end(), weight.begin(), weight.end());
-      pool_reflection.insert(pool_reflection.end(), reflection.begin(), reflection.end());
-    }
-    start[i] = found->second;
-    table.row_reflects[i] =
-        std::any_of(reflection.begin(), reflection.end(), [](std::uint8_t r) { return r != 0; });
+    w.hash[row] = hash;
+    table.row_reflects[row] = reflects ? 1 : 0;
   }
-  table.interpolation = std::move(pool);
-  table.reflection = std::move(pool_reflection);
-  table.weight_start = std::move(start);
+  std::copy(w.source.begin(), w.source.end(), table.source.begin());
+
+  // Serial, in row order, so that the first row of each key owns the pool's copy: an
+  // open-addressing table of rows, probed by hash and confirmed on the whole key.
+  std::size_t capacity = 16;
+  while (capacity < 2 * row_count)
+    capacity *= 2;
+  w.slot.assign(capacity, -1);
+  std::int64_t pool_size = 0;
+  for (std::size_t row = 0; row < row_count; ++row) {
+    const std::int64_t begin = table.row_start[row], end = table.row_start[row + 1];
+    std::size_t probe = static_cast<std::size_t>(w.hash[row]) & (capacity - 1);
+    std::int64_t match = -1;
+    for (; w.slot[probe] >= 0; probe = (probe + 1) & (capacity - 1)) {
+      const auto other = static_cast<std::size_t>(w.slot[probe]);
+      const std::int64_t other_begin = table.row_start[other];
+      if (w.hash[other] != w.hash[row] || table.row_start[other + 1] - other_begin != end - begin)
+        continue;
+      if (std::equal(w.quantised.begin() + begin, w.quantised.begin() + end,
+                     w.quantised.begin() + other_begin) &&
+          std::equal(w.reflection.begin() + begin, w.reflection.begin() + end,
+                     w.reflection.begin() + other_begin)) {
+        match = static_cast<std::int64_t>(other);
+        break;
+      }
+    }
+    if (match >= 0) {
+      table.weight_start[row] = table.weight_start[static_cast<std::size_t>(match)];
+      w.owner[row] = 0;
+    } else {
+      w.slot[probe] = static_cast<std::int64_t>(row);
+      table.weight_start[row] = pool_size;
+      pool_size += end - begin;
+      w.owner[row] = 1;
+    }
+  }
+
+  // The pool: each owner's sorted weights and reflection bits at its start (in parallel).
+  table.interpolation.resize(static_cast<std::size_t>(pool_size));
+  table.reflection.resize(static_cast<std::size_t>(pool_size));
+#pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
+  for (std::int64_t i = 0; i < rows; ++i) {
+    const auto row = static_cast<std::size_t>(i);
+    if (!w.owner[row]) continue;
+    const std::int64_t begin = table.row_start[row], end = table.row_start[row + 1];
+    std::copy(w.weight.begin() + begin, w.weight.begin() + end,
+              table.interpolation.begin() + table.weight_start[row]);
+    std::copy(w.reflection.begin() + begin, w.reflection.begin() + end,
+              table.reflection.begin() + table.weight_start[row]);
+  }
 }
 
 void apply_operator(const WeightTable& table, const FieldArray& in, std::span<const Parity> parity,

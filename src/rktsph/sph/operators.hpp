@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "rktsph/core/field_array.hpp"
+#include "rktsph/core/parallel.hpp"
 #include "rktsph/core/point_cloud.hpp"
 #include "rktsph/sph/kernel.hpp"
 #include "rktsph/sph/neighbour_search.hpp"
@@ -95,6 +96,9 @@ struct StencilSource {
   double volume = 0.0;
 };
 
+/// Throws std::invalid_argument for more than 8 mirror planes (a stencil's reflection subsets).
+void check_mirror_count(const OperatorOptions& options);
+
 /// Gathers the sources of `cells` within the kernel support of `target`, with mirror images.
 /// Sources lying on a mirror plane get no image there (the image would coincide with them).
 /// `exclude` (if >= 0) is left out (the target itself, for same-set stencils).
@@ -110,9 +114,68 @@ bool append_row(WeightTable& table, const std::array<double, 3>& target,
                 std::span<const StencilSource> stencil, const OperatorOptions& options,
                 GradientReference reference, std::int32_t self_column);
 
+/// Where compute_row writes one row: row_size(stencil, reference) slots of each array, e.g. a
+/// row's part of a table (so that rows can be computed in parallel into their own parts).
+/// `gradient` may point at scratch when the table keeps no gradient weights; gradient[a] for
+/// a >= dimension gets zeros, or nothing if it is null.
+struct RowSlots {
+  std::int32_t* source = nullptr;
+  std::uint8_t* reflection = nullptr;
+  double* interpolation = nullptr;
+  std::array<double*, 3> gradient{};
+};
+
+/// Entries of a row from `stencil`: one per source, plus the self column with
+/// GradientReference::Self.
+inline std::size_t row_size(std::size_t stencil_size, GradientReference reference) {
+  return stencil_size + (reference == GradientReference::Self ? 1 : 0);
+}
+
+/// The weights of append_row, written into `slots` instead of appended: the same arithmetic in
+/// the same order, so a table computed row by row in any order is the table append_row makes.
+bool compute_row(int dimension, const std::array<double, 3>& target,
+                 std::span<const StencilSource> stencil, const OperatorOptions& options,
+                 GradientReference reference, std::int32_t self_column, const RowSlots& slots);
+
+/// Whether append_row would call the row regular, without keeping its weights (thread-safe).
+bool row_is_regular(int dimension, const std::array<double, 3>& target,
+                    std::span<const StencilSource> stencil, const OperatorOptions& options,
+                    GradientReference reference, std::int32_t self_column);
+
+/// Where a row is taken and how its gradient is referenced (the arguments of append_row besides
+/// its stencil).
+struct RowTarget {
+  std::array<double, 3> position{};
+  GradientReference reference = GradientReference::ShepardCentroid;
+  std::int32_t self_column = -1;
+};
+
 /// Rows the builder found degenerate (target indices).
 struct StencilReport {
   std::vector<std::int32_t> degenerate_rows;
+};
+
+/// Buffers of the parallel table builders below, kept between builds: each row's stencil is
+/// gathered into its own buffer (in parallel), the row sizes are prefix-summed, then each row's
+/// weights are computed into its part of the table (in parallel). Row order and the arithmetic
+/// inside a row are those of the serial build, so tables do not depend on the thread count; a
+/// rebuild of the same size allocates nothing once the buffers have grown.
+struct OperatorWorkspace {
+  std::vector<std::vector<StencilSource>> stencils;  ///< per row (never shrunk: kept capacity)
+  std::vector<RowTarget> targets;                    ///< per row
+  std::vector<std::uint8_t> regular;                 ///< per row
+};
+
+/// Buffers of share_row_weights (docs/theory.md §3.3), kept between builds.
+struct ShareWorkspace {
+  std::vector<std::int64_t> order;       ///< per entry: the row's sort permutation
+  std::vector<std::int32_t> source;      ///< per entry, sorted by row
+  std::vector<std::uint8_t> reflection;  ///< per entry, sorted by row
+  std::vector<double> weight;            ///< per entry, sorted by row
+  std::vector<std::int64_t> quantised;   ///< per entry: the weight rounded to the row's quantum
+  std::vector<std::uint64_t> hash;       ///< per row: hash of its key
+  std::vector<std::uint8_t> owner;       ///< per row: 1 if its weights start a pool block
+  std::vector<std::int64_t> slot;        ///< open-addressing table of rows by key
 };
 
 /// Cross-set operator targets <- sources: interpolation (Shepard or first order) and the
@@ -131,15 +194,52 @@ WeightTable build_collocated_gradient(const PointCloud& points, const CellList& 
 /// Empties a table for a rebuild, keeping the capacity of its arrays (docs/theory.md §2.6).
 void reset_table(WeightTable& table, int dimension);
 
-/// The two builders above, into an existing table and stencil buffer (reset first): a rebuild on
-/// a configuration of the same size allocates nothing.
+/// What a built table keeps: an interpolation-only table (the hourglass filter's) computes the
+/// gradient weights that first-order interpolation needs in scratch and stores none; it is the
+/// table drop_gradients() leaves.
+enum class TableWeights { InterpolationAndGradient, InterpolationOnly };
+
+/// The two builders above, into an existing table (overwritten) with reusable buffers, parallel
+/// over rows (OpenMP): a rebuild on a configuration of the same size allocates nothing.
 void build_cross_operator(const PointCloud& targets, const CellList& sources,
                           const OperatorOptions& options, WeightTable& table,
-                          std::vector<StencilSource>& stencil, StencilReport* report = nullptr);
+                          OperatorWorkspace& workspace, StencilReport* report = nullptr,
+                          TableWeights weights = TableWeights::InterpolationAndGradient);
 void build_collocated_gradient(const PointCloud& points, const CellList& cells,
                                const OperatorOptions& options, std::span<const std::int32_t> rows,
-                               WeightTable& table, std::vector<StencilSource>& stencil,
+                               WeightTable& table, OperatorWorkspace& workspace,
                                StencilReport* report = nullptr);
+
+/// Second half of build_rows: prefix-sums the row sizes in table.row_start[1..], sizes the
+/// table and computes every row into its part (in parallel).
+void compute_rows(int dimension, const OperatorOptions& options, TableWeights weights,
+                  WeightTable& table, OperatorWorkspace& workspace);
+
+/// The row machinery of the two builders, for tables whose rows need stencils of their own (the
+/// step's points_to_nodes): for each row r, in parallel, gather(r, stencil) fills the reused
+/// buffer `stencil` and returns the row's RowTarget; then each row's weights are computed by
+/// compute_row into its part of `table`, which is overwritten. Rows compute_row calls degenerate
+/// get workspace.regular[r] = 0. `gather` runs inside a parallel region: it must not throw.
+template <class Gather>
+void build_rows(std::size_t row_count, int dimension, const OperatorOptions& options,
+                TableWeights weights, WeightTable& table, OperatorWorkspace& workspace,
+                Gather&& gather) {
+  check_mirror_count(options);  // gather_stencil's one throw, before the parallel region
+  if (workspace.stencils.size() < row_count) workspace.stencils.resize(row_count);
+  workspace.targets.resize(row_count);
+  table.row_start.resize(row_count + 1);
+  table.row_start[0] = 0;
+  const auto rows = static_cast<std::int64_t>(row_count);
+#pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
+  for (std::int64_t r = 0; r < rows; ++r) {
+    const auto row = static_cast<std::size_t>(r);
+    std::vector<StencilSource>& stencil = workspace.stencils[row];
+    workspace.targets[row] = gather(row, stencil);
+    table.row_start[row + 1] =
+        static_cast<std::int64_t>(row_size(stencil.size(), workspace.targets[row].reference));
+  }
+  compute_rows(dimension, options, weights, table, workspace);
+}
 
 /// Frees the gradient weights of a table used only for interpolation (the hourglass filter).
 void drop_gradients(WeightTable& table);
@@ -149,6 +249,8 @@ void drop_gradients(WeightTable& table);
 /// lattice every interior row has the same stencil, so applying the table then streams only the
 /// source indices from memory (4 bytes per entry instead of 13). Results change by rounding only.
 void share_row_weights(WeightTable& table);
+/// The same with reusable buffers, parallel over rows: no allocation once they have grown.
+void share_row_weights(WeightTable& table, ShareWorkspace& workspace);
 
 /// Applies `table` to `field_count` fields: out_values (may be null) gets the interpolation,
 /// out_gradient (may be null) gets dimension * field_count fields, gradient of field f along

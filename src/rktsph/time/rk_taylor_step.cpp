@@ -139,8 +139,8 @@ void RkTaylorStep::bind_operators(const Configuration& configuration) {
     no_own_value_.assign(ns, -1);
     for (std::size_t i = 0; i < ns; ++i)
       every_node_[i] = static_cast<std::int32_t>(i);
-    node_average_ = build_adjoint_operator(
-        operators_.nodes_to_points, configuration.stress_points.volume, every_node_, no_own_value_);
+    build_adjoint_operator(operators_.nodes_to_points, configuration.stress_points.volume,
+                           every_node_, no_own_value_, node_average_);
   }
 }
 

@@ -10,17 +10,6 @@ namespace rktsph {
 
 namespace {
 
-// Removes the last row of a table (used to retry a degenerate boundary stencil).
-void drop_last_row(WeightTable& table) {
-  table.row_start.pop_back();
-  const auto size = static_cast<std::size_t>(table.row_start.back());
-  table.source.resize(size);
-  table.reflection.resize(size);
-  table.interpolation.resize(size);
-  for (auto& g : table.gradient)
-    g.resize(size);
-}
-
 // A node whose cells do not all carry a stress point is a boundary node and gets the half-step of
 // step 1b, except at a re-entrant corner (2D, three cells of four, e.g. the toe of a cut): there
 // the three stress points surround the node, so the cross-set gradient is already linear-exact,
@@ -48,6 +37,12 @@ StepOperatorBuilder::StepOperatorBuilder(const NodeSets& reference, const StepOp
   operator_options_.smoothing_length = options.h_over_dx * reference.spacing;
   operator_options_.interpolation_order = options.interpolation_order;
   operator_options_.mirrors = std::move(mirrors);
+  // A round trip through the stress points with first-order interpolation on a wider support, so
+  // that linear fields pass unchanged up to the boundary (docs/theory.md §3.3). Made once: a copy
+  // per build would allocate its mirrors.
+  filter_options_ = operator_options_;
+  filter_options_.smoothing_length = options.hourglass_h_over_dx * reference.spacing;
+  filter_options_.interpolation_order = 1;
   mirror_axes_.resize(reference.sph_nodes.size(), 0);
 }
 
@@ -62,6 +57,13 @@ void StepOperatorBuilder::build(const Configuration& configuration, StepOperator
 }
 
 void StepOperatorBuilder::classify(const Configuration& configuration, StepOperators& operators) {
+  if (classified_) {
+    operators.boundary_nodes.assign(boundary_nodes_.begin(), boundary_nodes_.end());
+    operators.node_to_boundary_row.assign(node_to_boundary_row_.begin(),
+                                          node_to_boundary_row_.end());
+    operators.incomplete_nodes.assign(incomplete_nodes_.begin(), incomplete_nodes_.end());
+    return;
+  }
   // The cells around a node are counted from the topology: stress point p is the cell whose
   // corners are its lower corner node plus {0, 1}^d. A node on a mirror plane also has the images
   // of its cells across it, one more set per plane (docs/theory.md §2.6).
@@ -94,6 +96,10 @@ void StepOperatorBuilder::classify(const Configuration& configuration, StepOpera
       operators.boundary_nodes.push_back(static_cast<std::int32_t>(i));
     }
   }
+  boundary_nodes_ = operators.boundary_nodes;
+  node_to_boundary_row_ = operators.node_to_boundary_row;
+  incomplete_nodes_ = operators.incomplete_nodes;
+  classified_ = true;
 }
 
 void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
@@ -109,7 +115,7 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
   const CellList& point_cells = point_cells_;
 
   StencilReport report;
-  build_cross_operator(points, node_cells, options, ops.nodes_to_points, stencil_, &report);
+  build_cross_operator(points, node_cells, options, ops.nodes_to_points, workspace_, &report);
   if (!report.degenerate_rows.empty())
     throw RunError(fmt::format(
         "the stress point at {} has a degenerate stencil (h/dx = {} is too small for its "
@@ -131,49 +137,47 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
   for (std::size_t r = 0; r < ops.incomplete_nodes.size(); ++r)
     if (ops.node_to_boundary_row[static_cast<std::size_t>(ops.incomplete_nodes[r])] >= 0)
       own_column_[r] = n_points + ops.incomplete_nodes[r];
-  ops.incomplete_closure =
-      build_adjoint_operator(ops.nodes_to_points, points.volume, ops.incomplete_nodes, own_column_);
+  build_adjoint_operator(ops.nodes_to_points, points.volume, ops.incomplete_nodes, own_column_,
+                         ops.incomplete_closure);
 
-  node_stencils_.resize(n);
-  WeightTable& table = ops.points_to_nodes;
-  reset_table(table, d);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto x = nodes.point(i);
-    const auto self = static_cast<std::int32_t>(i);
-    std::vector<StencilSource>& stencil = node_stencils_[i];
-    gather_stencil(x, point_cells, options, -1, stencil);
-    bool regular;
-    if (ops.node_to_boundary_row[i] < 0) {
-      regular = append_row(table, x, stencil, options, GradientReference::ShepardCentroid, -1);
-    } else {
-      // Boundary node: its own half-step value is the reference (docs/theory.md §2.2, step 2).
-      regular = append_row(table, x, stencil, options, GradientReference::Self, n_points + self);
-      if (!regular) {
-        // Rank-deficient compact stencil (e.g. a corner at h = 0.75 dx): add the half-step values
-        // of the neighbouring boundary nodes (docs/theory.md §4.2, §7.1).
-        drop_last_row(table);
-        gather_stencil(x, node_cells, options, self, stencil_);
-        for (StencilSource s : stencil_)
-          if (ops.node_to_boundary_row[static_cast<std::size_t>(s.column)] >= 0) {
-            s.column += n_points;
-            stencil.push_back(s);
-          }
-        regular = append_row(table, x, stencil, options, GradientReference::Self, n_points + self);
-      }
-    }
-    if (!regular)
+  // Each node's stencil in parallel (build_rows). A boundary node's own half-step value is the
+  // reference (docs/theory.md §2.2, step 2); where that leaves its compact stencil rank-deficient
+  // (e.g. a corner at h = 0.75 dx) the half-step values of the neighbouring boundary nodes are
+  // added (docs/theory.md §4.2, §7.1). Whether even they cannot complete it is recorded per node
+  // and thrown for the first such node after the parallel loop.
+  if (retry_stencils_.size() < n) retry_stencils_.resize(n);
+  const std::vector<std::int32_t>& boundary_row = ops.node_to_boundary_row;
+  build_rows(n, d, options, TableWeights::InterpolationAndGradient, ops.points_to_nodes, workspace_,
+             [&](std::size_t i, std::vector<StencilSource>& stencil) {
+               const auto x = nodes.point(i);
+               const auto self = static_cast<std::int32_t>(i);
+               gather_stencil(x, point_cells, options, -1, stencil);
+               if (boundary_row[i] < 0) return RowTarget{x, GradientReference::ShepardCentroid, -1};
+               const RowTarget row{x, GradientReference::Self, n_points + self};
+               if (row_is_regular(d, x, stencil, options, row.reference, row.self_column))
+                 return row;
+               std::vector<StencilSource>& neighbours = retry_stencils_[i];
+               gather_stencil(x, node_cells, options, self, neighbours);
+               for (StencilSource s : neighbours)
+                 if (boundary_row[static_cast<std::size_t>(s.column)] >= 0) {
+                   s.column += n_points;
+                   stencil.push_back(s);
+                 }
+               return row;
+             });
+  for (std::size_t i = 0; i < n; ++i)
+    if (!workspace_.regular[i])
       throw RunError(
           fmt::format("the SPH node at {} has a degenerate stencil that even its "
                       "boundary neighbours cannot complete",
                       describe_point(nodes, i)));
-  }
 
   report.degenerate_rows.clear();
   if (ops.boundary_nodes.empty())  // every face is a mirror plane: no half-step rows
     reset_table(ops.boundary_gradient, d);
   else
     build_collocated_gradient(nodes, node_cells, options, ops.boundary_nodes, ops.boundary_gradient,
-                              stencil_, &report);
+                              workspace_, &report);
   if (!report.degenerate_rows.empty())
     throw RunError(fmt::format(
         "the boundary node at {} has a degenerate collocated stencil",
@@ -184,25 +188,21 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
 void StepOperatorBuilder::build_filter_tables(const Configuration& configuration,
                                               StepOperators& ops) {
   if (!filter_active()) return;
-  // A round trip through the stress points with first-order interpolation on a wider support, so
-  // that linear fields pass unchanged up to the boundary (docs/theory.md §3.3).
-  OperatorOptions filter_options = operator_options_;
-  filter_options.smoothing_length = options_.hourglass_h_over_dx * reference_.spacing;
-  filter_options.interpolation_order = 1;
+  const OperatorOptions& filter_options = filter_options_;
   const double filter_support =
       filter_options.kernel.support_radius(filter_options.smoothing_length);
   node_cells_.rebuild(configuration.sph_nodes, filter_support);
   point_cells_.rebuild(configuration.stress_points, filter_support);
   const CellList& filter_node_cells = node_cells_;
   const CellList& filter_point_cells = point_cells_;
+  // The round trip only interpolates: the gradient weights are computed in scratch, not kept.
   build_cross_operator(configuration.stress_points, filter_node_cells, filter_options,
-                       ops.filter_to_points, stencil_);
+                       ops.filter_to_points, workspace_, nullptr, TableWeights::InterpolationOnly);
   build_cross_operator(configuration.sph_nodes, filter_point_cells, filter_options,
-                       ops.filter_to_nodes, stencil_);
-  drop_gradients(ops.filter_to_points);  // the round trip only interpolates
-  drop_gradients(ops.filter_to_nodes);
-  share_row_weights(ops.filter_to_points);  // interior rows share one stencil: less memory
-  share_row_weights(ops.filter_to_nodes);   // traffic in the filter (docs/theory.md §3.3)
+                       ops.filter_to_nodes, workspace_, nullptr, TableWeights::InterpolationOnly);
+  // Interior rows share one stencil: less memory traffic in the filter (docs/theory.md §3.3).
+  share_row_weights(ops.filter_to_points, share_workspace_);
+  share_row_weights(ops.filter_to_nodes, share_workspace_);
 }
 
 }  // namespace rktsph

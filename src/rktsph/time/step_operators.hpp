@@ -88,10 +88,17 @@ class StepOperatorBuilder {
   const NodeSets& reference_;
   StepOptions options_;
   OperatorOptions operator_options_;
+  OperatorOptions filter_options_;  // the hourglass filter's round trip
   std::vector<std::uint8_t> mirror_axes_;
   std::vector<std::int32_t> cells_at_node_;  // cells (stress points) with the node as a corner
-  std::vector<std::vector<StencilSource>> node_stencils_;  // stress points around each node
-  std::vector<StencilSource> stencil_;
+  // The classification depends only on the lattice topology and the mirror axes: made once and
+  // copied into later builds' operators (a moving configuration keeps its topology, §9.1).
+  bool classified_ = false;
+  std::vector<std::int32_t> boundary_nodes_, node_to_boundary_row_, incomplete_nodes_;
+  // The tables' buffers, kept between builds so that a rebuild allocates nothing once grown.
+  OperatorWorkspace workspace_;
+  std::vector<std::vector<StencilSource>> retry_stencils_;  // boundary neighbours of a corner
+  ShareWorkspace share_workspace_;
   std::vector<std::int32_t> own_column_;
   CellList node_cells_, point_cells_;  // rebuilt in place (no allocation once grown)
 };
