@@ -83,7 +83,12 @@ JsonValue moving_configuration_summary(const Simulation& simulation,
   summary.set("reference_volume", reference_volume);
   summary.set("cells", std::move(cells));
   summary.set("reseeded_stress_points", 0);
+  summary.set("fallback_gradient_rows", simulation.step().operators().fallback_rows);
   summary.set("detected_free_surface", std::move(surface));
+  JsonValue walls = JsonValue::object();
+  walls.set("nodes_in_contact", simulation.boundary_conditions().nodes_in_contact());
+  walls.set("deepest_penetration", simulation.boundary_conditions().deepest_penetration());
+  summary.set("rigid_walls", std::move(walls));
   return summary;
 }
 

@@ -28,6 +28,10 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
   const std::size_t ns = reference.sph_nodes.size();
   builder_.build(configuration, operators_);
   if (policy == OperatorPolicy::CurrentConfiguration) {
+    // A stencil that degenerates as the body deforms (nodes squeezed into a line on a wall) takes
+    // the uncorrected gradient and is counted; one that is degenerate from the start is an error
+    // of the case, thrown by the build above (docs/theory.md §9.5).
+    builder_.fall_back_on_degenerate_stencils();
     motion_.emplace(reference);
     predicted_nodes_ = reference.sph_nodes;
   }

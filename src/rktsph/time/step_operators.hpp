@@ -57,6 +57,10 @@ struct StepOperators {
   /// Every stress point's stencil is its own cell's corners (h small enough): the lattice
   /// operators then commute in the interior (docs/theory.md §5.3).
   bool compact_stencils = false;
+  /// Rows whose correction matrix was singular and that took the uncorrected SPH gradient
+  /// instead (docs/theory.md §9.5): only on a moving configuration; a build on the initial
+  /// configuration throws instead.
+  std::size_t fallback_rows = 0;
   WeightTable filter_to_points;  ///< first-order round trip of the filter (docs/theory.md §3.3)
   WeightTable filter_to_nodes;
 };
@@ -83,6 +87,9 @@ class StepOperatorBuilder {
   const OperatorOptions& operator_options() const { return operator_options_; }
   /// True when the filter acts (2D and up, on, kappa > 0).
   bool filter_active() const;
+  /// From now on a row whose stencil cannot be made regular takes the uncorrected gradient and is
+  /// counted in StepOperators::fallback_rows, instead of stopping the run (moving configurations).
+  void fall_back_on_degenerate_stencils() { fall_back_ = true; }
 
  private:
   const NodeSets& reference_;
@@ -94,6 +101,9 @@ class StepOperatorBuilder {
   // The classification depends only on the lattice topology and the mirror axes: made once and
   // copied into later builds' operators (a moving configuration keeps its topology, §9.1).
   bool classified_ = false;
+  bool fall_back_ = false;
+  /// Counts `rows` degenerate rows, or throws `message` for the first when not falling back.
+  void degenerate(std::size_t rows, StepOperators& operators, const std::string& message) const;
   std::vector<std::int32_t> boundary_nodes_, node_to_boundary_row_, incomplete_nodes_;
   // The tables' buffers, kept between builds so that a rebuild allocates nothing once grown.
   OperatorWorkspace workspace_;

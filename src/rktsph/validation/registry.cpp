@@ -48,6 +48,8 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_ld_strip_footing_bearing},
       {"ld-cantilever-plate", "oscillating cantilever plate (Gray, Monaghan & Swift 2001): period",
        &validate_ld_cantilever_plate},
+      {"ld-slope-cohesive", "critical height and post-failure of a cut, large deformation (5.3.5)",
+       &validate_ld_slope_cohesive},
   };
   return cases;
 }

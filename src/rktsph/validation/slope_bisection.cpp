@@ -1,6 +1,6 @@
 // The critical stability number of the 10 m vertical cut in a Perzyna Von Mises soil without
 // hardening (docs/theory.md §8.6), found by bisection over runs: slope-viscoplastic (thesis §4.5.2)
-// and ld-slope-cohesive (§5.3.5) run it on their own case folders.
+// and ld-slope-cohesive (thesis 5.3.5) run it on their own case folders.
 #include "rktsph/validation/slope_bisection.hpp"
 
 #include <fmt/format.h>

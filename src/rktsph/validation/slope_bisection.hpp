@@ -1,5 +1,5 @@
 // The critical stability number of a 10 m vertical cut by bisection over runs (docs/theory.md
-// §8.6), shared by slope-viscoplastic (thesis §4.5.2) and ld-slope-cohesive (§5.3.5): each run sets
+// §8.6), shared by slope-viscoplastic (thesis §4.5.2) and ld-slope-cohesive (thesis 5.3.5): each run sets
 // the yield stress from N = gamma H sqrt(3) / Y, ramps gravity in over kRampEnd and is classified
 // stable or failing from the crest's motion over its last two seconds.
 #pragma once

@@ -30,5 +30,6 @@ std::vector<CheckResult> validate_ld_spinning_square(const ValidationContext& co
 std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContext& context);
 std::vector<CheckResult> validate_ld_strip_footing_bearing(const ValidationContext& context);
 std::vector<CheckResult> validate_ld_cantilever_plate(const ValidationContext& context);
+std::vector<CheckResult> validate_ld_slope_cohesive(const ValidationContext& context);
 
 }  // namespace rktsph
