@@ -1,7 +1,7 @@
-// The `rigid_wall` boundary condition (docs/input-reference.md, "boundary_conditions"; docs/theory.md
-// §9.13): a node on the wall keeps only a velocity away from it, and on a rough wall does not slip;
-// nodes off the wall are untouched; contacts follow the moving configuration; a zero normal is
-// refused at its line.
+// The `rigid_wall` boundary condition (docs/input-reference.md, "boundary_conditions";
+// docs/theory.md §9.13): a node on the wall keeps only a velocity away from it, and on a rough wall
+// does not slip; nodes off the wall are untouched; contacts follow the moving configuration; a zero
+// normal is refused at its line.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -78,7 +78,8 @@ TEST(RigidWall, ContactsFollowTheMovingNodes) {
   BoundaryConditions conditions = simulation.boundary_conditions();
   PointCloud moved = simulation.nodes().sph_nodes;
   // Lift the whole block 0.1 m, then push one node 0.02 m through the wall.
-  for (std::size_t i = 0; i < moved.size(); ++i) moved.position[1][i] += 0.1;
+  for (std::size_t i = 0; i < moved.size(); ++i)
+    moved.position[1][i] += 0.1;
   moved.position[1][3] = -0.02;
   conditions.follow_configuration(moved);
   EXPECT_EQ(conditions.nodes_in_contact(), 1u);

@@ -338,13 +338,15 @@ BoundaryConditions::BoundaryConditions(
 
   // Rigid walls: the nodes of their groups that touch them, here on the reference configuration
   // and then at every move of the large-deformation model (follow_configuration).
-  for (int a = 0; a < d; ++a) velocity_field_[static_cast<std::size_t>(a)] = model.velocity_field(a);
+  for (int a = 0; a < d; ++a)
+    velocity_field_[static_cast<std::size_t>(a)] = model.velocity_field(a);
   contact_tolerance_ = 1e-6 * nodes.spacing;
   for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
     if (condition.kind != BoundaryConditionSpec::Kind::RigidWall) continue;
     RigidWall wall;
     double length = 0.0;
-    for (int a = 0; a < 3; ++a) length += condition.wall_normal[a] * condition.wall_normal[a];
+    for (int a = 0; a < 3; ++a)
+      length += condition.wall_normal[a] * condition.wall_normal[a];
     length = std::sqrt(length);
     for (std::size_t a = 0; a < 3; ++a) {
       wall.point[a] = condition.wall_point[a];

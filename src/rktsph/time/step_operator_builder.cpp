@@ -118,12 +118,12 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
   build_cross_operator(points, node_cells, options, ops.nodes_to_points, workspace_, &report);
   ops.fallback_rows = 0;
   if (!report.degenerate_rows.empty())
-    degenerate(report.degenerate_rows.size(), ops,
-               fmt::format("the stress point at {} has a degenerate stencil (h/dx = {} is too "
-                           "small for its neighbourhood)",
-                           describe_point(points,
-                                          static_cast<std::size_t>(report.degenerate_rows[0])),
-                           options_.h_over_dx));
+    degenerate(
+        report.degenerate_rows.size(), ops,
+        fmt::format("the stress point at {} has a degenerate stencil (h/dx = {} is too "
+                    "small for its neighbourhood)",
+                    describe_point(points, static_cast<std::size_t>(report.degenerate_rows[0])),
+                    options_.h_over_dx));
   ops.compact_stencils = true;
   for (std::size_t p = 0; p < ops.nodes_to_points.rows(); ++p)
     ops.compact_stencils =
@@ -181,10 +181,11 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
     build_collocated_gradient(nodes, node_cells, options, ops.boundary_nodes, ops.boundary_gradient,
                               workspace_, &report);
   if (!report.degenerate_rows.empty())
-    degenerate(report.degenerate_rows.size(), ops,
-               fmt::format("the boundary node at {} has a degenerate collocated stencil",
-                           describe_point(nodes, static_cast<std::size_t>(
-                                                     ops.boundary_nodes[report.degenerate_rows[0]]))));
+    degenerate(
+        report.degenerate_rows.size(), ops,
+        fmt::format("the boundary node at {} has a degenerate collocated stencil",
+                    describe_point(nodes, static_cast<std::size_t>(
+                                              ops.boundary_nodes[report.degenerate_rows[0]]))));
 }
 
 void StepOperatorBuilder::degenerate(std::size_t rows, StepOperators& operators,

@@ -39,7 +39,8 @@ double displacement_at(const ProbeTable& probes, const std::string& column, doub
 SlopeRun run_slope(const ValidationContext& context, const std::string& folder,
                    const std::vector<CaseOverride>& base, double stability_number,
                    double end_time) {
-  const double yield_stress = kSlopeUnitWeight * kSlopeCutHeight * std::sqrt(3.0) / stability_number;
+  const double yield_stress =
+      kSlopeUnitWeight * kSlopeCutHeight * std::sqrt(3.0) / stability_number;
   std::vector<CaseOverride> overrides = base;
   overrides.push_back({"materials.soil.yield_stress", fmt::format("{:.9g}", yield_stress)});
   overrides.push_back({"time.end", fmt::format("{}", end_time)});

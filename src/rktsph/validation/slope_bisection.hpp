@@ -1,7 +1,7 @@
 // The critical stability number of a 10 m vertical cut by bisection over runs (docs/theory.md
-// §8.6), shared by slope-viscoplastic (thesis §4.5.2) and ld-slope-cohesive (thesis 5.3.5): each run sets
-// the yield stress from N = gamma H sqrt(3) / Y, ramps gravity in over kRampEnd and is classified
-// stable or failing from the crest's motion over its last two seconds.
+// §8.6), shared by slope-viscoplastic (thesis §4.5.2) and ld-slope-cohesive (thesis 5.3.5): each
+// run sets the yield stress from N = gamma H sqrt(3) / Y, ramps gravity in over kRampEnd and is
+// classified stable or failing from the crest's motion over its last two seconds.
 #pragma once
 
 #include <filesystem>
@@ -29,8 +29,7 @@ struct SlopeRun {
 
 /// One run of the case in `folder` at stability number N, to `end_time`.
 SlopeRun run_slope(const ValidationContext& context, const std::string& folder,
-                   const std::vector<CaseOverride>& base, double stability_number,
-                   double end_time);
+                   const std::vector<CaseOverride>& base, double stability_number, double end_time);
 
 struct SlopeBisection {
   double critical = 0.0;  ///< NaN when the bracket does not hold

@@ -152,23 +152,15 @@ CheckResult check_within(std::string name, double value, double reference, doubl
 
 CheckResult check_at_most(std::string name, double value, double reference, double tolerance,
                           std::string unit) {
-  return {std::move(name),
-          value,
-          reference,
-          tolerance,
-          std::move(unit),
-          std::isfinite(value) && value <= tolerance,
+  return {std::move(name), value,           reference,
+          tolerance,       std::move(unit), std::isfinite(value) && value <= tolerance,
           "at_most"};
 }
 
 CheckResult check_at_least(std::string name, double value, double reference, double minimum,
                            std::string unit) {
-  return {std::move(name),
-          value,
-          reference,
-          minimum,
-          std::move(unit),
-          std::isfinite(value) && value >= minimum,
+  return {std::move(name), value,           reference,
+          minimum,         std::move(unit), std::isfinite(value) && value >= minimum,
           "at_least"};
 }
 

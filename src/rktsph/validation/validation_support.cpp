@@ -138,8 +138,8 @@ std::filesystem::path run_for_validation(const ValidationContext& context,
                                          const std::vector<Observer*>& observers) {
   const ValidationRun run = run_allowing_failure(context, description, label, inspect, observers);
   if (!run.completed)
-    throw RunError(fmt::format("run '{}' of {} did not complete: {}", label, description.name,
-                               run.message));
+    throw RunError(
+        fmt::format("run '{}' of {} did not complete: {}", label, description.name, run.message));
   return run.directory;
 }
 

@@ -57,20 +57,20 @@ const KeyTable<Condition>& rigid_wall_keys() {
   static const KeyTable<Condition> keys = {
       vector_key<Condition>("point", &Condition::wall_point, "m", "required",
                             "A point of the wall's plane."),
-      Key<Condition>{"normal", "vector", "–", "required", "non-zero",
-                     "The plane's normal, pointing into the body (any length).", true,
-                     [](const YamlNode& node, Condition& condition, Reading& reading) {
-                       const Vec3 normal = read_vector(node, reading.so_far.dimension);
-                       if (normal[0] == 0.0 && normal[1] == 0.0 && normal[2] == 0.0)
-                         fail_at(node, "the wall's normal must not be zero",
-                                 "a non-zero vector pointing into the body, e.g. [0, 1]");
-                       condition.wall_normal = normal;
-                     },
-                     [](YAML::Emitter& out, const Condition& condition,
-                        const CaseDescription& description) {
-                       out << YAML::Key << "normal" << YAML::Value;
-                       emit_vector(out, condition.wall_normal, description.dimension);
-                     }},
+      Key<Condition>{
+          "normal", "vector", "–", "required", "non-zero",
+          "The plane's normal, pointing into the body (any length).", true,
+          [](const YamlNode& node, Condition& condition, Reading& reading) {
+            const Vec3 normal = read_vector(node, reading.so_far.dimension);
+            if (normal[0] == 0.0 && normal[1] == 0.0 && normal[2] == 0.0)
+              fail_at(node, "the wall's normal must not be zero",
+                      "a non-zero vector pointing into the body, e.g. [0, 1]");
+            condition.wall_normal = normal;
+          },
+          [](YAML::Emitter& out, const Condition& condition, const CaseDescription& description) {
+            out << YAML::Key << "normal" << YAML::Value;
+            emit_vector(out, condition.wall_normal, description.dimension);
+          }},
       choice_key<Condition, bool>("surface", &Condition::wall_rough,
                                   {{"rough", true}, {"smooth", false}},
                                   "rough: a node in contact does not slip; smooth: it slides "

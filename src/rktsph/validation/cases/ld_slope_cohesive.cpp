@@ -45,7 +45,8 @@ PostFailure run_post_failure(const ValidationContext& context, std::vector<CaseO
   result.time = probes.time();
   const auto& ux = probes.column("crest.displacement_x");
   const auto& uy = probes.column("crest.displacement_y");
-  for (std::size_t i = 0; i < ux.size(); ++i) result.displacement.push_back(std::hypot(ux[i], uy[i]));
+  for (std::size_t i = 0; i < ux.size(); ++i)
+    result.displacement.push_back(std::hypot(ux[i], uy[i]));
   return result;
 }
 
@@ -68,13 +69,15 @@ std::vector<CheckResult> validate_ld_slope_cohesive(const ValidationContext& con
                      bisection.critical, reference, end_time);
     context.report->describe(
         context.report->description() +
-        fmt::format(" A run at N = {:g} (factor of safety {:.2f}) is then followed to t = {:g} s: "
-                    "the crest moves {:.2f} m ({:.3f} H).{}",
-                    kFailingNumber, reference / kFailingNumber, kFailureEnd,
-                    failure.displacement.back(), crest_ratio,
-                    failure.run.completed ? "" : " That run stopped early: " + failure.run.message));
+        fmt::format(
+            " A run at N = {:g} (factor of safety {:.2f}) is then followed to t = {:g} s: "
+            "the crest moves {:.2f} m ({:.3f} H).{}",
+            kFailingNumber, reference / kFailingNumber, kFailureEnd, failure.displacement.back(),
+            crest_ratio,
+            failure.run.completed ? "" : " That run stopped early: " + failure.run.message));
     Series crest{"SPH, large deformation", failure.time, {}, "line"};
-    for (double u : failure.displacement) crest.y.push_back(u / kSlopeCutHeight);
+    for (double u : failure.displacement)
+      crest.y.push_back(u / kSlopeCutHeight);
     context.report->add_figure(
         {"post_failure_crest",
          fmt::format("Crest displacement of the run at N = {:g}", kFailingNumber),

@@ -10,7 +10,8 @@
 //   settlement_reached    the footing's settlement at the end over B (>= 0.3: the model follows
 //                         the failure into large deformation).
 //   softening_drop        (peak - end)/peak of the footing pressure of the softening run (>= 0.1).
-//   contact_pressure_oddeven_ratio  the odd-even part of the node-by-node contact pressure -sigma_yy
+//   contact_pressure_oddeven_ratio  the odd-even part of the node-by-node contact pressure
+//   -sigma_yy
 //                         on the interior footing nodes over its mean (rest_checks.hpp), the
 //                         largest over the field states on the plateau of the first run.
 //   shear_band_angle      the band of eps_vp of the first run when the settlement reaches 0.1 B, on
@@ -48,7 +49,8 @@ constexpr double kPlateauFrom = 0.1, kPlateauTo = 0.3;
 constexpr double kSofteningModulus = -5.0e5, kResidualYield = 0.6 * kYieldStress;
 // Quick variant: B/dx = 8 instead of 16.
 constexpr double kQuickSpacing = 0.25;
-// The state of the run is sampled every kSampling seconds of simulated time (0.025 B of settlement).
+// The state of the run is sampled every kSampling seconds of simulated time (0.025 B of
+// settlement).
 constexpr double kSampling = 1.0;
 // Band measurement region: below the footing and up to 2 B under the crest.
 constexpr double kBandRegionDepth = 2.0 * kFootingWidth;
@@ -125,8 +127,8 @@ void report_vertical_cut(ValidationReport& report, const FootingHistory& perfect
                          double plateau, const BandMeasurement& band, const NodeLine& contact,
                          double contact_ratio) {
   const double cohesion = references::von_mises_plane_strain_cohesion(kYieldStress);
-  const double end = std::max(perfect.settlement.back(), softening.settlement.back()) /
-                     kFootingWidth;
+  const double end =
+      std::max(perfect.settlement.back(), softening.settlement.back()) / kFootingWidth;
   report.describe(fmt::format(
       "Thesis 5.3.6 (Appendix 4): a smooth rigid strip footing B = {:g} m flush with the crest "
       "of a vertical cut (half model, dx = {:g} m) in dry, weightless Von Mises-Perzyna soil, "
@@ -137,9 +139,9 @@ void report_vertical_cut(ValidationReport& report, const FootingHistory& perfect
       "{:.1f} kPa. Band of eps_vp at s = {:g} B on the reference positions: {:.1f} degrees from "
       "the vertical. A softening run (H = {:g} kPa, floor {:g} Y) peaks and drops towards 2 c_res "
       "= {:.1f} kPa.",
-      kFootingWidth, spacing, perfect.settlement.back() / kFootingWidth, 1e-3 * limit,
-      kPlateauFrom, kPlateauTo, 1e-3 * plateau, kPlateauFrom, band.primary.angle_deg,
-      1e-3 * kSofteningModulus, kResidualYield / kYieldStress,
+      kFootingWidth, spacing, perfect.settlement.back() / kFootingWidth, 1e-3 * limit, kPlateauFrom,
+      kPlateauTo, 1e-3 * plateau, kPlateauFrom, band.primary.angle_deg, 1e-3 * kSofteningModulus,
+      kResidualYield / kYieldStress,
       1e-3 * references::footing_on_cut_limit_pressure(
                  references::von_mises_plane_strain_cohesion(kResidualYield))));
   report.add_figure(
@@ -147,8 +149,7 @@ void report_vertical_cut(ValidationReport& report, const FootingHistory& perfect
        "Footing pressure against settlement (as thesis Fig. 5-48 to 5-50)",
        "settlement s / B [-]",
        "footing pressure q [kPa]",
-       {pressure_series("SPH, no hardening", perfect),
-        pressure_series("SPH, softening", softening),
+       {pressure_series("SPH, no hardening", perfect), pressure_series("SPH, softening", softening),
         sample_curve("2c = 2 Y / sqrt(3)", 0.0, end, 2, [&](double) { return 1e-3 * limit; }),
         sample_curve("2 c_res", 0.0, end, 2,
                      [&](double) { return 1e-3 * limit * kResidualYield / kYieldStress; })}});
@@ -188,8 +189,8 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
   NodeLine contact;
   double contact_ratio = 0.0;
   SampledObserver plateau_states(kSampling, [&](const Simulation& simulation) {
-    const NodeLine settlement = surface_settlement(simulation, kCrestY, kFootingLeft,
-                                                   kFootingLeft + kFootingWidth);
+    const NodeLine settlement =
+        surface_settlement(simulation, kCrestY, kFootingLeft, kFootingLeft + kFootingWidth);
     if (settlement.value.empty()) return;
     const double s = settlement.value.front() / kFootingWidth;
     if (!band && s >= kPlateauFrom) band = measure_wedge_band(simulation);

@@ -19,8 +19,8 @@ std::vector<CheckResult> validate_slope_viscoplastic(const ValidationContext& co
   // its bracket is 0.1 wide, and a coarse lattice fails later, not earlier (less room for a band).
   const double reference = references::kTaylorVerticalCutStabilityNumber;
   if (context.report)
-    report_bisection(*context.report, "Thesis 4.5.2", bisection.runs, bisection.critical,
-                     reference, end_time);
+    report_bisection(*context.report, "Thesis 4.5.2", bisection.runs, bisection.critical, reference,
+                     end_time);
   return {check_within("stability_number", bisection.critical, reference, 0.05 * reference, "1")};
 }
 
