@@ -77,6 +77,16 @@ double settlement_oddeven_ratio(const NodeLine& settlement, double half_width) {
   return oddeven_residual(values, starts_on_symmetry_plane) / largest;
 }
 
+double FootingContactSampler::sample(const Simulation& simulation) {
+  const NodeLine settlement = surface_settlement(simulation, surface, x_min, x_max);
+  if (settlement.value.empty()) return 0.0;
+  const double s = settlement.value.front() / width;
+  if (s < from || s > to) return s;
+  last = contact_pressure(simulation, surface, x_min, x_max);
+  largest_ratio = std::max(largest_ratio, contact_pressure_oddeven_ratio(last));
+  return s;
+}
+
 double contact_pressure_oddeven_ratio(const NodeLine& pressure) {
   const std::size_t n = pressure.value.size();
   if (n < 3) return std::numeric_limits<double>::quiet_NaN();

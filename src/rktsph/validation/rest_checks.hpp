@@ -60,6 +60,18 @@ double settlement_oddeven_ratio(const NodeLine& settlement, double half_width);
 /// mean pressure of those nodes.
 double contact_pressure_oddeven_ratio(const NodeLine& pressure);
 
+/// The contact pressure under a footing pushed into the ground, sampled on states where its
+/// settlement (that of its node at x_min, over `width`) lies within [from, to]: the largest
+/// contact_pressure_oddeven_ratio and the last pressure line.
+struct FootingContactSampler {
+  double surface = 0.0, x_min = 0.0, x_max = 0.0;  // the footing row (reference positions) [m]
+  double width = 1.0, from = 0.0, to = 0.0;        // settlement window, over `width`
+  NodeLine last;
+  double largest_ratio = 0.0;
+  /// Samples `simulation` if its settlement is in the window; returns the settlement over width.
+  double sample(const Simulation& simulation);
+};
+
 // --- Odd-even patterns on the 2D lattice -------------------------------------------------------
 
 /// A nodal field on the lattice (2D).

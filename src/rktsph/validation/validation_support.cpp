@@ -233,4 +233,19 @@ Series band_ridge_series(const BandLine& line, double y_low, double y_high) {
       line.centre_x, line.centre_y, -line.direction_deg, y_low, y_high, "line");
 }
 
+BandMeasurement measure_band_in_region(const Simulation& simulation, const std::string& case_name,
+                                       double x_min, double y_min) {
+  const PointCloud& nodes = simulation.nodes().sph_nodes;
+  const std::span<const double> strain = internal_variable(simulation, "eps_vp", case_name);
+  std::vector<double> x, y, value;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const double px = nodes.position[0][i], py = nodes.position[1][i];
+    if (px < x_min || py < y_min) continue;
+    x.push_back(px);
+    y.push_back(py);
+    value.push_back(strain[i]);
+  }
+  return measure_band(x, y, value, BandAngleOptions{});
+}
+
 }  // namespace rktsph

@@ -110,6 +110,11 @@ double relative_error(double value, double reference);
 
 /// The SPH-node values of the model's internal variable `name` (e.g. "eps_vp") at the current
 /// state; throws RunError naming `case_name` if the model has no such variable.
+/// The shear band of eps_vp (measure_band with the default options) over the SPH nodes whose
+/// reference position has x >= x_min and y >= y_min: the material band of a mechanism.
+BandMeasurement measure_band_in_region(const Simulation& simulation, const std::string& case_name,
+                                       double x_min, double y_min);
+
 std::span<const double> internal_variable(const Simulation& simulation, const std::string& name,
                                           const std::string& case_name);
 

@@ -57,9 +57,13 @@ std::vector<CheckResult> validate_ld_slope_cohesive(const ValidationContext& con
   std::vector<CaseOverride> base = {{"output.interval", "0"}};
   if (context.quick) base.push_back({"geometry.spacing", "1.0"});
   const int steps = context.quick ? 4 : 6;
+  // The failing end of the bracket: on the quick lattice a cut at N = 4.6 moves 0.36 m and comes
+  // to rest within the 6 s (the moving configuration restabilises a coarse cut sooner), so it
+  // starts from 5.2 there.
+  const double failing = context.quick ? 5.2 : 4.6;
   const double end_time = kSlopeRampEnd + 6.0;  // 6 s at full load after the ramp
   const SlopeBisection bisection =
-      bisect_stability_number(context, kCase, base, 3.0, 4.6, steps, end_time);
+      bisect_stability_number(context, kCase, base, 3.0, failing, steps, end_time);
   base.erase(base.begin());  // the post-failure run writes fields for its picture
   const PostFailure failure = run_post_failure(context, base);
   const double reference = references::kTaylorVerticalCutStabilityNumber;

@@ -100,17 +100,8 @@ double softening_drop(const FootingHistory& history) {
 }
 
 BandMeasurement measure_wedge_band(const Simulation& simulation) {
-  const PointCloud& nodes = simulation.nodes().sph_nodes;
-  const std::span<const double> strain = internal_variable(simulation, "eps_vp", kCase);
-  std::vector<double> x, y, value;
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const double px = nodes.position[0][i], py = nodes.position[1][i];
-    if (px < kFootingLeft - kFootingWidth || py < kCrestY - kBandRegionDepth) continue;
-    x.push_back(px);
-    y.push_back(py);
-    value.push_back(strain[i]);
-  }
-  return measure_band(x, y, value, BandAngleOptions{});
+  return measure_band_in_region(simulation, kCase, kFootingLeft - kFootingWidth,
+                                kCrestY - kBandRegionDepth);
 }
 
 Series pressure_series(std::string label, const FootingHistory& history) {
@@ -186,17 +177,11 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
 
   // The band at s = 0.1 B, the contact pressure at every field output on the plateau.
   std::optional<BandMeasurement> band;
-  NodeLine contact;
-  double contact_ratio = 0.0;
+  FootingContactSampler contact{
+      kCrestY, kFootingLeft, kFootingLeft + kFootingWidth, kFootingWidth, kPlateauFrom, kPlateauTo,
+      {},      0.0};
   SampledObserver plateau_states(kSampling, [&](const Simulation& simulation) {
-    const NodeLine settlement =
-        surface_settlement(simulation, kCrestY, kFootingLeft, kFootingLeft + kFootingWidth);
-    if (settlement.value.empty()) return;
-    const double s = settlement.value.front() / kFootingWidth;
-    if (!band && s >= kPlateauFrom) band = measure_wedge_band(simulation);
-    if (s < kPlateauFrom || s > kPlateauTo) return;
-    contact = contact_pressure(simulation, kCrestY, kFootingLeft, kFootingLeft + kFootingWidth);
-    contact_ratio = std::max(contact_ratio, contact_pressure_oddeven_ratio(contact));
+    if (contact.sample(simulation) >= kPlateauFrom && !band) band = measure_wedge_band(simulation);
   });
   // A run that stops early (a cell folding, docs/theory.md §9.12) is checked on what it wrote:
   // settlement_reached then fails with the settlement it got to.
@@ -216,7 +201,7 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
   const double plateau = plateau_pressure(perfect);
   if (context.report) {
     report_vertical_cut(*context.report, perfect, softening, spacing, limit, plateau, *band,
-                        contact, contact_ratio);
+                        contact.last, contact.largest_ratio);
     for (const ValidationRun* run : {&perfect_run, &softening_run})
       if (!run->completed)
         context.report->describe(context.report->description() + " A run stopped early (" +
@@ -231,7 +216,7 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
       check_at_least("settlement_reached", perfect.settlement.back() / kFootingWidth, 0.3, 0.3,
                      "fraction"),
       check_at_least("softening_drop", softening_drop(softening), 0.1, 0.1, "fraction"),
-      check_at_most("contact_pressure_oddeven_ratio", contact_ratio, 0.0, 0.05, "fraction"),
+      check_at_most("contact_pressure_oddeven_ratio", contact.largest_ratio, 0.0, 0.05, "fraction"),
       check_within("shear_band_angle", band->primary.angle_deg,
                    references::j2_plane_strain_band_angle_deg(), 5.0, "deg"),
   };

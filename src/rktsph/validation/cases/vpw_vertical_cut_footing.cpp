@@ -74,18 +74,8 @@ double footing_pressure(const ProbeTable& probes, std::size_t row, int node_coun
 }
 
 BandMeasurement measure_wedge_band(const Simulation& simulation) {
-  const PointCloud& nodes = simulation.nodes().sph_nodes;
-  const std::span<const double> strain =
-      internal_variable(simulation, "eps_vp", "vpw-vertical-cut-footing");
-  std::vector<double> x, y, value;
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const double px = nodes.position[0][i], py = nodes.position[1][i];
-    if (px < kFootingLeft - kFootingWidth || py < kCrestY - kBandRegionDepth) continue;
-    x.push_back(px);
-    y.push_back(py);
-    value.push_back(strain[i]);
-  }
-  return measure_band(x, y, value, BandAngleOptions{});
+  return measure_band_in_region(simulation, "vpw-vertical-cut-footing",
+                                kFootingLeft - kFootingWidth, kCrestY - kBandRegionDepth);
 }
 
 /// What the report shows of the final state: the band centre on each lattice row of the wedge
