@@ -2,6 +2,7 @@
 // them; `rktsph validate --all` runs the full ones. Named *Slow* so that the sanitizer pass of CI
 // leaves them to the Release pass.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <filesystem>
 #include <iostream>
@@ -95,6 +96,14 @@ TEST_P(QuickValidationSlow, PassesItsChecks) {
   if (const auto problem = known_open_problems().find(GetParam());
       problem != known_open_problems().end())
     GTEST_SKIP() << GetParam() << ": " << problem->second;
+  // One thread per case: ctest runs two of these at once on two cores, and a second OpenMP thread
+  // per case would only wait at the barriers of loops too short to share (the quick lattices are
+  // small), taking a core from the other case. The parallel paths have their own tests.
+  struct OneThread {
+    int saved = omp_get_max_threads();
+    OneThread() { omp_set_num_threads(1); }
+    ~OneThread() { omp_set_num_threads(saved); }
+  } one_thread;
   const auto& cases = validation_cases();
   const auto it = std::find_if(cases.begin(), cases.end(),
                                [&](const ValidationCase& c) { return c.name == GetParam(); });
