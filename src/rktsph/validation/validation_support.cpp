@@ -248,4 +248,23 @@ BandMeasurement measure_band_in_region(const Simulation& simulation, const std::
   return measure_band(x, y, value, BandAngleOptions{});
 }
 
+FootingHistory read_footing_history(const std::filesystem::path& directory, int node_count,
+                                    const std::string& stress, const std::string& end_a,
+                                    const std::string& end_b) {
+  const ProbeTable probes = ProbeTable::read(directory / "probes.csv");
+  FootingHistory history;
+  history.directory = directory;
+  history.time = probes.time();
+  const auto& mean = probes.column("footing." + stress);
+  const auto& first = probes.column(end_a + "." + stress);
+  const auto& last = probes.column(end_b + "." + stress);
+  const auto& displacement = probes.column("footing.displacement_y");
+  for (std::size_t row = 0; row < history.time.size(); ++row) {
+    const double sum = mean[row] * node_count - 0.5 * (first[row] + last[row]);
+    history.pressure.push_back(-sum / (node_count - 1));
+    history.settlement.push_back(-displacement[row]);
+  }
+  return history;
+}
+
 }  // namespace rktsph

@@ -110,6 +110,19 @@ double relative_error(double value, double reference);
 
 /// The SPH-node values of the model's internal variable `name` (e.g. "eps_vp") at the current
 /// state; throws RunError naming `case_name` if the model has no such variable.
+/// A footing pushed into the ground, from a run's probes: its pressure, the footing group's mean
+/// of `stress` over its `node_count` lattice-spaced nodes with trapezoidal weights (the probes
+/// `end_a` and `end_b` of its two end nodes count half), sign-flipped to compression positive, and
+/// its settlement, minus the group's mean u_y. Probe columns: footing.<stress>,
+/// footing.displacement_y, <end_a>.<stress>, <end_b>.<stress>.
+struct FootingHistory {
+  std::vector<double> time, settlement, pressure;  // [s], [m], [Pa]
+  std::filesystem::path directory;
+};
+FootingHistory read_footing_history(const std::filesystem::path& directory, int node_count,
+                                    const std::string& stress, const std::string& end_a,
+                                    const std::string& end_b);
+
 /// The shear band of eps_vp (measure_band with the default options) over the SPH nodes whose
 /// reference position has x >= x_min and y >= y_min: the material band of a mechanism.
 BandMeasurement measure_band_in_region(const Simulation& simulation, const std::string& case_name,

@@ -45,25 +45,6 @@ constexpr double kPlateauFrom = 0.1, kPlateauTo = 0.2;  // settlement over B
 constexpr double kSampling = 1.0;                       // [s] of simulated time
 constexpr double kQuickSpacing = 0.25;                  // B/dx = 16 instead of 32
 
-struct FootingHistory {
-  std::vector<double> settlement, pressure;
-};
-
-FootingHistory read_history(const std::filesystem::path& directory, int node_count) {
-  const ProbeTable probes = ProbeTable::read(directory / "probes.csv");
-  const auto& mean = probes.column("footing.stress_yy");
-  const auto& edge = probes.column("edge.stress_yy");
-  const auto& centre = probes.column("centre.stress_yy");
-  const auto& displacement = probes.column("footing.displacement_y");
-  FootingHistory history;
-  for (std::size_t row = 0; row < mean.size(); ++row) {
-    const double sum = mean[row] * node_count - 0.5 * (edge[row] + centre[row]);
-    history.pressure.push_back(-sum / (node_count - 1));
-    history.settlement.push_back(-displacement[row]);
-  }
-  return history;
-}
-
 /// The least-squares line q = intercept + slope s/B through the pressure over the plateau window.
 struct PressureLine {
   double intercept = 0.0, slope = 0.0;
@@ -159,7 +140,8 @@ std::vector<CheckResult> validate_ld_strip_footing_bearing(const ValidationConte
   const ValidationRun run = run_allowing_failure(
       context, description, context.quick ? "quick" : "full", {}, {&plateau_states});
   const std::filesystem::path& directory = run.directory;
-  const FootingHistory history = read_history(directory, footing_nodes);
+  const FootingHistory history =
+      read_footing_history(directory, footing_nodes, "stress_yy", "edge", "centre");
   const double capacity = references::prandtl_bearing_capacity(
       references::von_mises_plane_strain_cohesion(kYieldStress));
   const PressureLine line = fit_plateau(history);

@@ -55,31 +55,6 @@ constexpr double kSampling = 1.0;
 // Band measurement region: below the footing and up to 2 B under the crest.
 constexpr double kBandRegionDepth = 2.0 * kFootingWidth;
 
-/// The footing pressure and settlement histories of a run, from its probes.
-struct FootingHistory {
-  std::vector<double> time, settlement, pressure;
-  std::filesystem::path directory;
-};
-
-// Mean over the footing nodes with trapezoidal weights (the two end nodes count half), from the
-// group mean of the probe and the two end-node probes.
-FootingHistory read_history(const std::filesystem::path& directory, int node_count) {
-  const ProbeTable probes = ProbeTable::read(directory / "probes.csv");
-  FootingHistory history;
-  history.directory = directory;
-  history.time = probes.time();
-  const auto& mean = probes.column("footing.stress_yy");
-  const auto& inner = probes.column("inner.stress_yy");
-  const auto& crest = probes.column("crest.stress_yy");
-  const auto& displacement = probes.column("footing.displacement_y");
-  for (std::size_t row = 0; row < history.time.size(); ++row) {
-    const double sum = mean[row] * node_count - 0.5 * (inner[row] + crest[row]);
-    history.pressure.push_back(-sum / (node_count - 1));
-    history.settlement.push_back(-displacement[row]);
-  }
-  return history;
-}
-
 double plateau_pressure(const FootingHistory& history) {
   double sum = 0.0;
   int samples = 0;
@@ -187,13 +162,15 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
   // settlement_reached then fails with the settlement it got to.
   const ValidationRun perfect_run = run_allowing_failure(
       context, description, context.quick ? "quick" : "full", {}, {&plateau_states});
-  const FootingHistory perfect = read_history(perfect_run.directory, footing_nodes);
+  const FootingHistory perfect =
+      read_footing_history(perfect_run.directory, footing_nodes, "stress_yy", "inner", "crest");
   overrides.push_back({"materials.soil.hardening_modulus", fmt::format("{}", kSofteningModulus)});
   overrides.push_back({"materials.soil.minimum_yield_stress", fmt::format("{}", kResidualYield)});
   const ValidationRun softening_run =
       run_allowing_failure(context, load_bundled_case(context, kCase, overrides),
                            context.quick ? "quick_softening" : "softening");
-  const FootingHistory softening = read_history(softening_run.directory, footing_nodes);
+  const FootingHistory softening =
+      read_footing_history(softening_run.directory, footing_nodes, "stress_yy", "inner", "crest");
   if (!band) throw RunError(fmt::format("{}: the band was not measured", kCase));
 
   const double limit = references::footing_on_cut_limit_pressure(
