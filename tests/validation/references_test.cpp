@@ -2,8 +2,9 @@
 //  (a) numbers printed by the shared stdlib-only Python references. The CSVs under
 //      tests/data/references were produced by tests/data/references/generate.sh, which runs
 //      /usr/bin/python3 on elastic_bar.py, viscoplastic_bar.py, terzaghi.py, gravity_column.py,
-//      harmonic_column.py, strip_undrained.py, shear_band.py, vertical_cut.py, bearing.py and
-//      cantilever_plate.py with the options written in that script (one command per file);
+//      harmonic_column.py, strip_undrained.py, shear_band.py, vertical_cut.py, bearing.py,
+//      cantilever_plate.py and runout.py with the options written in that script (one command per
+//      file);
 //  (b) independent physics: closed forms derived by hand, limits, conservation laws, residuals of
 //      the governing equations by finite differences, and the numbers quoted in docs/theory.md
 //      chapter 8.
@@ -31,6 +32,7 @@
 #include "rktsph/validation/references/gravity_column.hpp"
 #include "rktsph/validation/references/harmonic_column.hpp"
 #include "rktsph/validation/references/limit_loads.hpp"
+#include "rktsph/validation/references/runout.hpp"
 #include "rktsph/validation/references/terzaghi.hpp"
 #include "rktsph/validation/references/viscoplastic_bar.hpp"
 
@@ -1229,6 +1231,69 @@ TEST(CantileverPlateTest, ScalesAsThinPlateTheory) {
   bad = plate;
   bad.poisson_ratio = 0.5;
   EXPECT_THROW(cantilever_plate_velocity_scale(bad), std::invalid_argument);
+}
+
+// ------------------------------------------------------------------------------------------------
+// Run-out of a collapsed cohesive block (docs/theory.md §9.14)
+
+// runout.py defaults: H0 = W0 = 10 m, ρ = 2000 kg/m³, g = 9.81 m/s², Y = 5 kPa (c = Y/√3).
+TEST(RunoutBoundTest, MatchesPythonRunoutWallHeightAndProfile) {
+  const double unit_weight = 2000.0 * 9.81;
+  const double cohesion = 5e3 / std::sqrt(3.0);
+  const ReferenceFile file = read_reference("runout.csv");
+  const Table& quantities = file.tables.at(0);
+  const double runout = nye_minimum_runout(100.0, cohesion, unit_weight);
+  // Printed to 4 decimals: half a unit of the last digit.
+  EXPECT_NEAR(runout, quantities.value_of("minimum final run-out"), 5e-5);
+  EXPECT_NEAR(nye_height(runout, cohesion, unit_weight),
+              quantities.value_of("maximum final height"), 5e-5);
+  const Table& profile = file.tables.at(1);
+  const int x = profile.column("x_m");
+  const int h = profile.column("h_max_m");
+  ASSERT_EQ(profile.rows.size(), 41u);
+  // The last row is the front itself, where the profile's slope is infinite and the rounding of
+  // the printed x alone moves h by several 1e-3: it is left out.
+  for (std::size_t row = 0; row + 1 < profile.rows.size(); ++row)
+    EXPECT_NEAR(nye_height(runout - profile.number(row, x), cohesion, unit_weight),
+                profile.number(row, h), 1e-4)
+        << "row " << row;
+}
+
+TEST(RunoutBoundTest, ProfileCarriesTheBlockAndBalancesTheBasalShear) {
+  const double unit_weight = 2000.0 * 9.81;
+  const double cohesion = 2886.75;
+  const double area = 100.0;
+  const double runout = nye_minimum_runout(area, cohesion, unit_weight);
+  // The steepest deposit holds exactly the block: ∫_0^L h dx′ = A. With x′ = L s² the integrand
+  // 2 L s h(L s²) is a quadratic in s, which Simpson's rule integrates exactly.
+  const int panels = 200;
+  double integral = 0.0;
+  for (int k = 0; k <= panels; ++k) {
+    const double s = static_cast<double>(k) / panels;
+    const double weight = (k == 0 || k == panels) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+    integral += weight * 2.0 * runout * s * nye_height(runout * s * s, cohesion, unit_weight);
+  }
+  integral /= 3.0 * panels;
+  EXPECT_NEAR(integral, area, 1e-8 * area);
+  // Basal equilibrium of the thin layer: γ h dh/dx′ = c everywhere (central differences, error
+  // O(δ²) relative to the curvature).
+  for (const double distance : {0.5, 2.0, 10.0, 40.0}) {
+    const double delta = 1e-4 * distance;
+    const double slope = (nye_height(distance + delta, cohesion, unit_weight) -
+                          nye_height(distance - delta, cohesion, unit_weight)) /
+                         (2.0 * delta);
+    EXPECT_NEAR(unit_weight * nye_height(distance, cohesion, unit_weight) * slope, cohesion,
+                1e-6 * cohesion);
+  }
+  EXPECT_THROW(nye_height(-1.0, cohesion, unit_weight), std::invalid_argument);
+  EXPECT_THROW(nye_minimum_runout(area, 0.0, unit_weight), std::invalid_argument);
+}
+
+TEST(RunoutBoundTest, RitterFrontMovesAtTwiceTheShallowWaterSpeed) {
+  // Ritter's dam break: the front moves at 2 √(g H) from where the column stood.
+  EXPECT_DOUBLE_EQ(ritter_front(0.0, 10.0, 10.0, 9.81), 10.0);
+  EXPECT_NEAR(ritter_front(0.5, 10.0, 10.0, 9.81), 10.0 + std::sqrt(9.81 * 10.0), 1e-12);
+  EXPECT_THROW(ritter_front(-1.0, 0.0, 1.0, 9.81), std::invalid_argument);
 }
 
 }  // namespace

@@ -15,11 +15,20 @@ void detect_current_surface(const Simulation& simulation, FreeSurface& out) {
   detect_free_surface(nodes, cells, options, out);
 }
 
+std::vector<std::uint8_t> lattice_perimeter(const NodeSets& nodes) {
+  std::vector<std::uint8_t> perimeter(nodes.sph_nodes.size(), 0);
+  for (std::size_t i = 0; i < perimeter.size(); ++i)
+    for (int a = 0; a < nodes.dimension && !perimeter[i]; ++a)
+      for (const int sign : {-1, 1}) {
+        LatticeIndex index = nodes.node_index[i];
+        index[static_cast<std::size_t>(a)] += sign;
+        if (nodes.node_at(index) < 0) perimeter[i] = 1;
+      }
+  return perimeter;
+}
+
 SurfaceAgreement compare_with_perimeter(const Simulation& simulation, const FreeSurface& detected) {
-  const SurfaceSet& surface = simulation.boundary_conditions().surface();
-  std::vector<std::uint8_t> perimeter(detected.on_surface.size(), 0);
-  for (std::int32_t node : surface.node)
-    perimeter[static_cast<std::size_t>(node)] = 1;
+  const std::vector<std::uint8_t> perimeter = lattice_perimeter(simulation.nodes());
   SurfaceAgreement agreement;
   for (std::size_t i = 0; i < perimeter.size(); ++i) {
     agreement.perimeter_nodes += perimeter[i];

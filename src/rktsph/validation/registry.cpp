@@ -50,6 +50,8 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_ld_cantilever_plate},
       {"ld-slope-cohesive", "critical height and post-failure of a cut, large deformation (5.3.5)",
        &validate_ld_slope_cohesive},
+      {"ld-slope-low-cohesion", "collapse and run-out of a block of very low cohesion (5.3.4)",
+       &validate_ld_slope_low_cohesion},
   };
   return cases;
 }

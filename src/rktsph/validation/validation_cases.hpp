@@ -31,5 +31,6 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
 std::vector<CheckResult> validate_ld_strip_footing_bearing(const ValidationContext& context);
 std::vector<CheckResult> validate_ld_cantilever_plate(const ValidationContext& context);
 std::vector<CheckResult> validate_ld_slope_cohesive(const ValidationContext& context);
+std::vector<CheckResult> validate_ld_slope_low_cohesion(const ValidationContext& context);
 
 }  // namespace rktsph

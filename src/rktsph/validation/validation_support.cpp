@@ -267,4 +267,26 @@ FootingHistory read_footing_history(const std::filesystem::path& directory, int 
   return history;
 }
 
+FootingHistory run_coarse_footing(const ValidationContext& context, const std::string& folder,
+                                  double spacing, double length, const std::string& stress,
+                                  const std::string& end_a, const std::string& end_b) {
+  const ValidationRun run = run_allowing_failure(
+      context,
+      load_bundled_case(
+          context, folder,
+          {{"geometry.spacing", fmt::format("{}", spacing)}, {"output.interval", "0"}}),
+      "coarse");
+  const int node_count = static_cast<int>(std::lround(length / spacing)) + 1;
+  return read_footing_history(run.directory, node_count, stress, end_a, end_b);
+}
+
+Series footing_pressure_series(std::string label, const FootingHistory& history, double width) {
+  Series series{std::move(label), {}, {}, "line"};
+  for (std::size_t row = 0; row < history.time.size(); ++row) {
+    series.x.push_back(history.settlement[row] / width);
+    series.y.push_back(1e-3 * history.pressure[row]);
+  }
+  return series;
+}
+
 }  // namespace rktsph

@@ -123,6 +123,15 @@ FootingHistory read_footing_history(const std::filesystem::path& directory, int 
                                     const std::string& stress, const std::string& end_a,
                                     const std::string& end_b);
 
+/// A report series (line) of a footing's pressure in kPa against its settlement over `width`.
+Series footing_pressure_series(std::string label, const FootingHistory& history, double width);
+/// The second resolution of a footing case's report: cases/<folder> run again at `spacing`
+/// without field output (label "coarse"; a run that stops early is read as far as it got), its
+/// footing history read as read_footing_history reads it, over the round(length/spacing) + 1
+/// nodes of a footing of `length` in the model.
+FootingHistory run_coarse_footing(const ValidationContext& context, const std::string& folder,
+                                  double spacing, double length, const std::string& stress,
+                                  const std::string& end_a, const std::string& end_b);
 /// The shear band of eps_vp (measure_band with the default options) over the SPH nodes whose
 /// reference position has x >= x_min and y >= y_min: the material band of a mechanism.
 BandMeasurement measure_band_in_region(const Simulation& simulation, const std::string& case_name,

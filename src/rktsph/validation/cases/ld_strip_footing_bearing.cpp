@@ -12,7 +12,8 @@
 //                           Prandtl's rigid-plastic analysis is that line's intercept. Within
 //                           -3 %/+5 % (the reference column holds the middle of that band, 0.01,
 //                           the tolerance its half width, 0.04). The Perzyna overstress is below
-//                           1 %: V/(gamma B) = 0.005.
+//                           1 %: V/(gamma B) = 0.005. A run that stops before 0.2 B has no
+//                           line: the check then fails with no value (null in the JSON line).
 //   settlement_reached      the footing's settlement at the end over B (>= 0.2).
 //   contact_pressure_oddeven_ratio  the odd-even part of the node-by-node contact pressure on the
 //                           interior footing nodes over its mean (rest_checks.hpp), the largest
@@ -23,6 +24,7 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,7 +52,8 @@ struct PressureLine {
   double intercept = 0.0, slope = 0.0;
 };
 
-PressureLine fit_plateau(const FootingHistory& history) {
+// The line, or nothing when the run did not settle through the window (it stopped early).
+std::optional<PressureLine> fit_plateau(const FootingHistory& history) {
   double n = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
   for (std::size_t row = 0; row < history.pressure.size(); ++row) {
     const double s = history.settlement[row] / kFootingWidth;
@@ -62,48 +65,57 @@ PressureLine fit_plateau(const FootingHistory& history) {
     sxy += s * history.pressure[row];
   }
   const double spread = n * sxx - sx * sx;
-  if (n < 2.0 || spread <= 0.0)
-    throw RunError(fmt::format("{}: the footing never settled from {:g} B to {:g} B", kCase,
-                               kPlateauFrom, kPlateauTo));
+  if (n < 2.0 || spread <= 0.0) return std::nullopt;
   const double slope = (n * sxy - sx * sy) / spread;
-  return {(sy - slope * sx) / n, slope};
+  return PressureLine{(sy - slope * sx) / n, slope};
 }
 
 void report_bearing(ValidationReport& report, const ValidationRun& run,
-                    const FootingHistory& history, double spacing, double capacity,
-                    const PressureLine& line, const NodeLine& contact, double contact_ratio) {
+                    const FootingHistory& history, const FootingHistory* coarse, double spacing,
+                    double capacity, const std::optional<PressureLine>& line,
+                    const NodeLine& contact, double contact_ratio) {
+  const std::string fitted =
+      line ? fmt::format(
+                 "the line fitted to the pressure over {:g} B <= s <= {:g} B gives q = "
+                 "{:.1f} kPa + {:.1f} kPa x s/B, and its intercept is the checked bearing "
+                 "capacity.",
+                 kPlateauFrom, kPlateauTo, 1e-3 * line->intercept, 1e-3 * line->slope)
+           : fmt::format(
+                 "the run did not settle through {:g} B <= s <= {:g} B, so no line is "
+                 "fitted and the bearing capacity is not measured.",
+                 kPlateauFrom, kPlateauTo);
   report.describe(
-      fmt::format(
-          "Thesis 5.3.7 (Appendix 5): a smooth rigid strip footing B = {:g} m (half model, dx = "
-          "{:g} "
-          "m) pushed at a constant rate into a deep, weightless Von Mises-Perzyna stratum to a "
-          "settlement of {:.2f} B with the large-deformation model. Reference: Prandtl's bearing "
-          "capacity (2 + pi) c = {:.1f} kPa. A penetrating footing gains resistance with its "
-          "settlement s (heave and embedment); the line fitted to the pressure over {:g} B <= s <= "
-          "{:g} B gives q = {:.1f} kPa + {:.1f} kPa x s/B, and its intercept is the checked "
-          "bearing "
-          "capacity.",
-          kFootingWidth, spacing, history.settlement.back() / kFootingWidth, 1e-3 * capacity,
-          kPlateauFrom, kPlateauTo, 1e-3 * line.intercept, 1e-3 * line.slope) +
+      fmt::format("Thesis 5.3.7 (Appendix 5): a smooth rigid strip footing B = {:g} m (half "
+                  "model, dx = {:g} m) pushed at a constant rate into a deep, weightless Von "
+                  "Mises-Perzyna stratum to a settlement of {:.2f} B with the large-deformation "
+                  "model. Reference: Prandtl's bearing capacity (2 + pi) c = {:.1f} kPa. A "
+                  "penetrating footing gains resistance with its settlement s (heave and "
+                  "embedment); {}",
+                  kFootingWidth, spacing, history.settlement.back() / kFootingWidth,
+                  1e-3 * capacity, fitted) +
       (run.completed ? std::string() : " The run stopped early: " + run.message));
-  Series measured{"SPH, mean vertical stress under the footing", {}, {}, "line"};
-  for (std::size_t row = 0; row < history.pressure.size(); ++row) {
-    measured.x.push_back(history.settlement[row] / kFootingWidth);
-    measured.y.push_back(1e-3 * history.pressure[row]);
-  }
   const double end = history.settlement.back() / kFootingWidth;
-  report.add_figure(
-      {"load_settlement",
-       "Footing pressure against settlement (as thesis Fig. 5-54)",
-       "settlement s / B [-]",
-       "footing pressure q [kPa]",
-       {std::move(measured),
-        sample_curve("(2 + pi) c", 0.0, end, 2, [&](double) { return 1e-3 * capacity; }),
-        sample_curve(
-            "line fitted over the window", 0.0, end, 2,
-            [&](double s) { return 1e-3 * (line.intercept + line.slope * s); }, "line"),
-        sample_curve("+5 % / -3 %", 0.0, end, 2, [&](double) { return 1.05e-3 * capacity; }),
-        sample_curve("", 0.0, end, 2, [&](double) { return 0.97e-3 * capacity; })}});
+  Figure load{
+      "load_settlement",
+      "Footing pressure against settlement (as thesis Fig. 5-54)",
+      "settlement s / B [-]",
+      "footing pressure q [kPa]",
+      {footing_pressure_series(fmt::format("SPH, dx = {:g} m", spacing), history, kFootingWidth)}};
+  if (coarse)
+    load.series.push_back(
+        footing_pressure_series(fmt::format("SPH, dx = {:g} m (to s = {:.2f} B)", kQuickSpacing,
+                                            coarse->settlement.back() / kFootingWidth),
+                                *coarse, kFootingWidth));
+  load.series.push_back(
+      sample_curve("(2 + pi) c", 0.0, end, 2, [&](double) { return 1e-3 * capacity; }));
+  if (line)
+    load.series.push_back(sample_curve(
+        "line fitted over the window", 0.0, end, 2,
+        [&](double s) { return 1e-3 * (line->intercept + line->slope * s); }, "line"));
+  load.series.push_back(
+      sample_curve("+5 % / -3 %", 0.0, end, 2, [&](double) { return 1.05e-3 * capacity; }));
+  load.series.push_back(sample_curve("", 0.0, end, 2, [&](double) { return 0.97e-3 * capacity; }));
+  report.add_figure(std::move(load));
   Series pressure{"SPH footing nodes", contact.x, {}, "line"};
   for (double p : contact.value)
     pressure.y.push_back(1e-3 * p);
@@ -116,7 +128,7 @@ void report_bearing(ValidationReport& report, const ValidationRun& run,
        "-sigma_yy [kPa]",
        {std::move(pressure),
         sample_curve("(2 + pi) c", 0.0, kHalfWidth, 2, [&](double) { return 1e-3 * capacity; })}});
-  report.add_picture({"eps_vp", run.directory.string(), "eps_vp", -1, -1.0, 1.0,
+  report.add_picture({"eps_vp", run.directory.string(), "eps_vp", -1, -1.0, 0.0,
                       "Equivalent viscoplastic strain at the end of the push on the deformed "
                       "configuration (true scale): the Prandtl mechanism, with the heave beside "
                       "the footing."});
@@ -144,15 +156,22 @@ std::vector<CheckResult> validate_ld_strip_footing_bearing(const ValidationConte
       read_footing_history(directory, footing_nodes, "stress_yy", "edge", "centre");
   const double capacity = references::prandtl_bearing_capacity(
       references::von_mises_plane_strain_cohesion(kYieldStress));
-  const PressureLine line = fit_plateau(history);
-  if (context.report)
-    report_bearing(*context.report, run, history, spacing, capacity, line, contact.last,
-                   contact.largest_ratio);
+  const std::optional<PressureLine> line = fit_plateau(history);
+  if (context.report) {
+    // The second resolution of the report (full runs only): the quick variant's lattice.
+    std::optional<FootingHistory> coarse;
+    if (!context.quick)
+      coarse = run_coarse_footing(context, kCase, kQuickSpacing, kHalfWidth, "stress_yy", "edge",
+                                  "centre");
+    report_bearing(*context.report, run, history, coarse ? &*coarse : nullptr, spacing, capacity,
+                   line, contact.last, contact.largest_ratio);
+  }
   // bearing_capacity_error: +5 %/-3 % as the issue asks, after the rate correction (the
   // overstress is below 1 % here). contact_pressure_oddeven_ratio 5 % as the vertical cut.
   return {
-      check_within("bearing_capacity_error", line.intercept / capacity - 1.0, 0.01, 0.04,
-                   "fraction"),
+      // Not measured (NaN, a failed check) when the run stopped before 0.2 B.
+      check_within("bearing_capacity_error", line ? line->intercept / capacity - 1.0 : std::nan(""),
+                   0.01, 0.04, "fraction"),
       check_at_least("settlement_reached", history.settlement.back() / kFootingWidth, 0.2, 0.2,
                      "fraction"),
       check_at_most("contact_pressure_oddeven_ratio", contact.largest_ratio, 0.0, 0.05, "fraction"),

@@ -79,19 +79,10 @@ BandMeasurement measure_wedge_band(const Simulation& simulation) {
                                 kCrestY - kBandRegionDepth);
 }
 
-Series pressure_series(std::string label, const FootingHistory& history) {
-  Series series{std::move(label), {}, {}, "line"};
-  for (std::size_t row = 0; row < history.time.size(); ++row) {
-    series.x.push_back(history.settlement[row] / kFootingWidth);
-    series.y.push_back(1e-3 * history.pressure[row]);
-  }
-  return series;
-}
-
 void report_vertical_cut(ValidationReport& report, const FootingHistory& perfect,
-                         const FootingHistory& softening, double spacing, double limit,
-                         double plateau, const BandMeasurement& band, const NodeLine& contact,
-                         double contact_ratio) {
+                         const FootingHistory& softening, const FootingHistory* coarse,
+                         double spacing, double limit, double plateau, const BandMeasurement& band,
+                         const NodeLine& contact, double contact_ratio) {
   const double cohesion = references::von_mises_plane_strain_cohesion(kYieldStress);
   const double end =
       std::max(perfect.settlement.back(), softening.settlement.back()) / kFootingWidth;
@@ -110,15 +101,22 @@ void report_vertical_cut(ValidationReport& report, const FootingHistory& perfect
       kResidualYield / kYieldStress,
       1e-3 * references::footing_on_cut_limit_pressure(
                  references::von_mises_plane_strain_cohesion(kResidualYield))));
-  report.add_figure(
-      {"load_settlement",
-       "Footing pressure against settlement (as thesis Fig. 5-48 to 5-50)",
-       "settlement s / B [-]",
-       "footing pressure q [kPa]",
-       {pressure_series("SPH, no hardening", perfect), pressure_series("SPH, softening", softening),
-        sample_curve("2c = 2 Y / sqrt(3)", 0.0, end, 2, [&](double) { return 1e-3 * limit; }),
-        sample_curve("2 c_res", 0.0, end, 2,
-                     [&](double) { return 1e-3 * limit * kResidualYield / kYieldStress; })}});
+  Figure load{"load_settlement",
+              "Footing pressure against settlement (as thesis Fig. 5-48 to 5-50)",
+              "settlement s / B [-]",
+              "footing pressure q [kPa]",
+              {footing_pressure_series(fmt::format("SPH, no hardening, dx = {:g} m", spacing),
+                                       perfect, kFootingWidth),
+               footing_pressure_series("SPH, softening", softening, kFootingWidth)}};
+  if (coarse)
+    load.series.push_back(footing_pressure_series(
+        fmt::format("SPH, no hardening, dx = {:g} m", kQuickSpacing), *coarse, kFootingWidth));
+  load.series.push_back(
+      sample_curve("2c = 2 Y / sqrt(3)", 0.0, end, 2, [&](double) { return 1e-3 * limit; }));
+  load.series.push_back(sample_curve("2 c_res", 0.0, end, 2, [&](double) {
+    return 1e-3 * limit * kResidualYield / kYieldStress;
+  }));
+  report.add_figure(std::move(load));
   Series measured{"SPH footing nodes", contact.x, {}, "line"};
   for (double p : contact.value)
     measured.y.push_back(1e-3 * p);
@@ -131,13 +129,13 @@ void report_vertical_cut(ValidationReport& report, const FootingHistory& perfect
        "-sigma_yy [kPa]",
        {std::move(measured), sample_curve("2c", kFootingLeft, kFootingLeft + kFootingWidth, 2,
                                           [&](double) { return 1e-3 * limit; })}});
-  report.add_picture({"eps_vp", perfect.directory.string(), "eps_vp", -1, -1.0, 1.0,
+  report.add_picture({"eps_vp", perfect.directory.string(), "eps_vp", -1, -1.0, 0.0,
                       fmt::format("Equivalent viscoplastic strain at the end of the push on the "
                                   "deformed configuration (true scale), no hardening: the wedge "
                                   "from the inner footing edge slides out of the face (c = {:.1f} "
                                   "kPa).",
                                   1e-3 * cohesion)});
-  report.add_picture({"eps_vp_softening", softening.directory.string(), "eps_vp", -1, -1.0, 1.0,
+  report.add_picture({"eps_vp_softening", softening.directory.string(), "eps_vp", -1, -1.0, 0.0,
                       "Equivalent viscoplastic strain at the end of the push, softening run."});
 }
 
@@ -177,8 +175,13 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
       references::von_mises_plane_strain_cohesion(kYieldStress));
   const double plateau = plateau_pressure(perfect);
   if (context.report) {
-    report_vertical_cut(*context.report, perfect, softening, spacing, limit, plateau, *band,
-                        contact.last, contact.largest_ratio);
+    // The second resolution of the report (full runs only): the quick variant's lattice.
+    std::optional<FootingHistory> coarse;
+    if (!context.quick)
+      coarse = run_coarse_footing(context, kCase, kQuickSpacing, kFootingWidth, "stress_yy",
+                                  "inner", "crest");
+    report_vertical_cut(*context.report, perfect, softening, coarse ? &*coarse : nullptr, spacing,
+                        limit, plateau, *band, contact.last, contact.largest_ratio);
     for (const ValidationRun* run : {&perfect_run, &softening_run})
       if (!run->completed)
         context.report->describe(context.report->description() + " A run stopped early (" +

@@ -1,0 +1,43 @@
+// The detected free surface against the body's outline (src/rktsph/simulation/surface_watch.*,
+// docs/theory.md §9.4): the outline is every node missing a lattice neighbour, also where a
+// condition holds the body (a fixed base), since the detector sees only the nodes.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "rktsph/case/case_reader.hpp"
+#include "rktsph/simulation/simulation.hpp"
+#include "rktsph/simulation/surface_watch.hpp"
+
+namespace rktsph {
+namespace {
+
+// A 6 m x 4 m block at dx = 0.5 m (13 x 9 nodes), fixed at its base, a roller on its left face.
+const std::string kBlock =
+    "name: block\nmodel: dry_large_deformation\ndimension: 2\nplane: strain\n"
+    "geometry:\n  spacing: 0.5\n  shapes: [{rectangle: {min: [0, 0], max: [6, 4]}, material: "
+    "soil}]\n"
+    "materials:\n  soil: {model: linear_elastic, density: 2000, young_modulus: 1.0e7, "
+    "poisson_ratio: 0.3}\n"
+    "boundary_conditions:\n  - {group: ymin, fixed: true}\n  - {group: xmin, roller: x}\n"
+    "time: {end: 0.01}\n";
+
+TEST(SurfaceWatch, OutlineIsEveryNodeMissingALatticeNeighbourWhateverItsCondition) {
+  const Simulation simulation(read_case_text(kBlock, "case.yaml"));
+  const std::vector<std::uint8_t> outline = lattice_perimeter(simulation.nodes());
+  std::size_t count = 0;
+  for (std::uint8_t on : outline)
+    count += on;
+  EXPECT_EQ(count, 2u * (13u + 9u) - 4u);
+  // The block as built: the detector finds exactly its outline, base and left face included.
+  FreeSurface detected;
+  detect_current_surface(simulation, detected);
+  const SurfaceAgreement agreement = compare_with_perimeter(simulation, detected);
+  EXPECT_EQ(agreement.perimeter_nodes, count);
+  EXPECT_EQ(agreement.missed, 0u);
+  EXPECT_EQ(agreement.false_positive, 0u);
+  EXPECT_EQ(agreement.misflagged_fraction(), 0.0);
+}
+
+}  // namespace
+}  // namespace rktsph
