@@ -196,8 +196,7 @@ int command_check(const std::string& case_path, const std::vector<std::string>& 
 }
 
 int command_validate(std::vector<std::string> names, bool all, bool quick, bool json,
-                     const std::string& output, const std::string& report, int threads) {
-  if (threads > 0) omp_set_num_threads(threads);
+                     const std::string& output, const std::string& report, int threads, int jobs) {
   const auto& cases = validation_cases();
   if (all || names.empty())
     for (const ValidationCase& c : cases)
@@ -229,13 +228,17 @@ int command_validate(std::vector<std::string> names, bool all, bool quick, bool 
                                               : output;
   context.quick = quick;
   context.write_report = !report.empty();
+  // Several cases run side by side, one per core, each on its share of the cores: the bundled
+  // runs are small enough that a second OpenMP thread mostly waits at barriers.
+  const int cores = std::max(omp_get_num_procs(), 1);
+  if (jobs <= 0) jobs = selected.size() > 1 ? cores : 1;
+  if (threads <= 0) threads = std::max(cores / jobs, 1);
   bool all_passed = true;
-  for (const ValidationCase* validation : selected) {
-    const ValidationResult result = run_validation(*validation, context);
+  run_validations(selected, context, jobs, threads, [&](const ValidationResult& result) {
     all_passed = all_passed && result.passed;
     if (json) {
       std::cout << validation_json_line(result) << std::endl;
-      continue;
+      return;
     }
     std::cout << fmt::format("{:<28} {}  ({:.1f} s)\n", result.case_name,
                              result.passed ? "PASSED" : "FAILED", result.wall_seconds);
@@ -248,7 +251,8 @@ int command_validate(std::vector<std::string> names, bool all, bool quick, bool 
                                check.name, check.value, check.reference, bound, check.tolerance,
                                check.unit, check.passed ? "ok" : "FAIL");
     }
-  }
+    std::cout << std::flush;
+  });
   if (!report.empty()) {
     std::vector<std::string> arguments = {report};
     for (const ValidationCase* validation : selected)
@@ -325,7 +329,15 @@ int main(int argc, char** argv) {
   validate->add_flag("--quick", quick, "Coarser, shorter variants (as run by make test)");
   validate->add_flag("--json", json, "One JSON object per case per line");
   validate->add_option("-o,--output", output, "Folder for the runs (default results/validation)");
-  validate->add_option("--threads", threads, "OpenMP threads")->check(integer_in_range(1, 1024));
+  validate
+      ->add_option("--threads", threads,
+                   "OpenMP threads of each case (default: the cores over the cases run at once)")
+      ->check(integer_in_range(1, 1024));
+  int jobs = 0;
+  validate
+      ->add_option("--jobs", jobs,
+                   "Cases run at once (default: one per core when several are asked, else 1)")
+      ->check(integer_in_range(1, 1024));
   std::string report;
   validate->add_option("--report", report,
                        "Also write a report with plots to this folder (index.html, index.md); "
@@ -360,7 +372,7 @@ int main(int argc, char** argv) {
     if (*run)
       return command_run(case_path, output, threads, sets, quiet, overwrite, restart, limits);
     if (*check) return command_check(case_path, sets, limits);
-    if (*validate) return command_validate(names, all, quick, json, output, report, threads);
+    if (*validate) return command_validate(names, all, quick, json, output, report, threads, jobs);
     if (*plot)
       return command_plot(run_directory, field, component, plot_time, magnification, output);
   } catch (const InputError& error) {

@@ -389,6 +389,33 @@ TEST(CommandLine, DivergingRunStopsWithADiagnosisAndKeepsItsLastGoodOutput) {
         << entry.path();
 }
 
+// Cases run side by side (--jobs) give the same lines, in the order asked, as one after the
+// other: they share no state. The lines' wall times differ and are left out of the comparison.
+TEST(CommandLine, ValidateJobsKeepTheOrderAndTheResults) {
+  const std::string cases =
+      "validate --quick --json bar1d-viscoplastic ld-rotation-objectivity "
+      "bar1d-elastic --threads 1 -o ";
+  const Result serial = run(cases + scratch("jobs1").string() + " --jobs 1");
+  const Result parallel = run(cases + scratch("jobs3").string() + " --jobs 3");
+  ASSERT_EQ(serial.status, 0) << serial.output;
+  ASSERT_EQ(parallel.status, 0) << parallel.output;
+  const auto without_wall_times = [](const std::string& output) {
+    std::string lines;
+    std::istringstream stream(output);
+    for (std::string line; std::getline(stream, line);) {
+      const std::size_t at = line.find(",\"wall_seconds\":");
+      if (at != std::string::npos) line.erase(at, line.find(',', at + 1) - at);
+      lines += line + "\n";
+    }
+    return lines;
+  };
+  const std::string expected = without_wall_times(serial.output);
+  EXPECT_EQ(without_wall_times(parallel.output), expected);
+  EXPECT_LT(expected.find("bar1d-viscoplastic"), expected.find("ld-rotation-objectivity"));
+  EXPECT_LT(expected.find("ld-rotation-objectivity"), expected.find("\"bar1d-elastic"));
+  EXPECT_EQ(run("validate bar1d-elastic --jobs 0").status, 2);
+}
+
 TEST(CommandLine, ValidateRejectsUnknownCaseNames) {
   const Result result = run("validate no-such-case --json");
   EXPECT_EQ(result.status, 2);

@@ -2,6 +2,8 @@
 // InputError for missing, out-of-range and unknown keys (docs/input-reference.md, materials).
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <string>
 
 #include "rktsph/core/error.hpp"
@@ -70,6 +72,7 @@ TEST(PerzynaFactory, BuildsVonMisesWithDefaults) {
   EXPECT_EQ(von_mises->parameters().exponent, 1.0);
   EXPECT_EQ(von_mises->parameters().minimum_yield_stress, 500.0);
   EXPECT_EQ(von_mises->parameters().fluidity, 4.0);
+  EXPECT_EQ(material->tension_cutoff(), std::numeric_limits<double>::infinity());  // off
   EXPECT_EQ(material->density(), 2000.0);
   std::vector<double> internal(2);
   material->initial_internal(internal);
@@ -117,6 +120,14 @@ TEST(PerzynaFactory, OutOfRangeValuesNameTheirKeyAndLine) {
   block = von_mises_block();
   block.values["minimum_yield_stress"] = {60e3, at_line(18)};  // above Y0
   EXPECT_EQ(error_of(block).key(), "materials.soil.minimum_yield_stress");
+
+  block = von_mises_block();
+  block.values["tension_cutoff"] = {-1.0, at_line(19)};  // a cut-off in compression
+  error = error_of(block);
+  EXPECT_EQ(error.key(), "materials.soil.tension_cutoff");
+  EXPECT_EQ(error.location().line, 19);
+  block.values["tension_cutoff"] = {2e3, at_line(19)};
+  EXPECT_EQ(create_material(block)->tension_cutoff(), 2e3);
 
   ParameterBlock clay = cam_clay_block();
   clay.values["compression_index"] = {0.03, at_line(26)};  // below kappa_c = 0.04

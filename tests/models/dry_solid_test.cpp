@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <memory>
+#include <vector>
 
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/materials/perzyna_von_mises.hpp"
@@ -91,6 +94,65 @@ TEST(DrySolid, PlaneStressViscoplasticSourceKeepsTheOutOfPlaneStressZero) {
   EXPECT_NEAR(q, 1.0e4 + 1.0e4 * std::exp(-3.0 * shear * 10.0 * t / 1.0e4), 1e-6 * 1e4);
   EXPECT_EQ(values(model.stress_field(0, 0), 0), 0.0);
   EXPECT_EQ(values(model.stress_field(1, 1), 0), 0.0);
+}
+
+// The tension cut-off (docs/theory.md §1.7): an update that ends with p = tr(sigma)/3 above the
+// cut-off is returned onto it by shifting the carried normal stresses alike, so in plane strain
+// the deviator is kept exactly; in plane stress sigma_zz stays 0. One node, an elastic rate only
+// (Y far above the stresses, so the viscoplastic source does not act).
+struct CutOffResult {
+  double mean = 0.0, xx_minus_yy = 0.0, xy = 0.0, zz = 0.0;
+};
+
+CutOffResult advance_under_tension(Kinematics kinematics, double cutoff, double rate_xx) {
+  std::vector<std::unique_ptr<Material>> materials;
+  PerzynaVonMisesParameters parameters{1.0e9, 0.0, 1.0, 1.0, 1.0e7};
+  parameters.tension_cutoff = cutoff;
+  materials.push_back(
+      std::make_unique<PerzynaVonMises>(2000.0, ElasticConstants{1.0e7, 0.3}, parameters));
+  const DrySolid model(kinematics, std::move(materials), Loads{}, SourceIntegration{});
+  FieldArray values(model.field_count(), 1), rate(model.field_count(), 1),
+      internal(model.internal_count(), 1);
+  model.initial_internal(0, internal, 0);
+  values(model.stress_field(0, 0), 0) = 1.0e3;
+  values(model.stress_field(1, 1), 0) = -2.0e3;
+  values(model.stress_field(0, 1), 0) = 5.0e2;
+  rate(model.stress_field(0, 0), 0) = rate_xx;
+  rate(model.stress_field(1, 1), 0) = rate_xx;
+  const std::int32_t material[] = {0};
+  model.advance(material, rate, 0.0, 1.0, values, internal);
+  CutOffResult result;
+  const int zz = model.stress_field(2, 2);
+  result.zz = zz >= 0 ? values(zz, 0) : 0.0;
+  const double xx = values(model.stress_field(0, 0), 0), yy = values(model.stress_field(1, 1), 0);
+  result.mean = (xx + yy + result.zz) / 3.0;
+  result.xx_minus_yy = xx - yy;
+  result.xy = values(model.stress_field(0, 1), 0);
+  return result;
+}
+
+TEST(DrySolid, TensionCutOffReturnsTheMeanStressAndKeepsTheDeviator) {
+  // Rates of 1e4 Pa/s on xx and yy over 1 s: p would end at (11e3 + 8e3)/3 = 6.33 kPa in plane
+  // stress and, with sigma_zz = 0 carried and unchanged, the same in plane strain.
+  const double unlimited = (11.0e3 + 8.0e3) / 3.0;
+  const CutOffResult strain = advance_under_tension(Kinematics::PlaneStrain, 2.0e3, 1.0e4);
+  EXPECT_NEAR(strain.mean, 2.0e3, 1e-9);
+  EXPECT_NEAR(strain.xx_minus_yy, 3.0e3, 1e-9);  // the deviator: differences and shear kept
+  EXPECT_NEAR(strain.xy, 5.0e2, 1e-9);
+  EXPECT_NEAR(strain.zz, 2.0e3 - unlimited, 1e-9);
+  const CutOffResult stress = advance_under_tension(Kinematics::PlaneStress, 2.0e3, 1.0e4);
+  EXPECT_NEAR(stress.mean, 2.0e3, 1e-9);
+  EXPECT_NEAR(stress.xx_minus_yy, 3.0e3, 1e-9);
+  EXPECT_EQ(stress.zz, 0.0);
+  // Below the cut-off, and with none, the update is the elastic one.
+  const CutOffResult below = advance_under_tension(Kinematics::PlaneStrain, 1.0e4, 1.0e4);
+  EXPECT_NEAR(below.mean, unlimited, 1e-9);
+  const CutOffResult off = advance_under_tension(Kinematics::PlaneStrain,
+                                                 std::numeric_limits<double>::infinity(), 1.0e4);
+  EXPECT_NEAR(off.mean, unlimited, 1e-9);
+  // Compression is never touched.
+  const CutOffResult compressed = advance_under_tension(Kinematics::PlaneStrain, 0.0, -1.0e4);
+  EXPECT_NEAR(compressed.mean, (-9.0e3 - 12.0e3) / 3.0, 1e-9);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -71,6 +72,10 @@ class Material {
     return !is_elastic();
   }
 
+  /// The largest mean stress p = tr(stress)/3 the material carries [Pa] (tension positive): a
+  /// stress update that ends above it is returned onto it (docs/theory.md §1.7). +infinity: no
+  /// cut-off.
+  virtual double tension_cutoff() const { return std::numeric_limits<double>::infinity(); }
   /// Relaxation rate of the source [1/s] (for RK sub-stepping); 0 for elastic materials.
   virtual double source_stiffness(const SymmetricTensor& stress,
                                   std::span<const double> internal) const {

@@ -24,6 +24,8 @@ std::unique_ptr<Material> PerzynaVonMises::from_parameters(ParameterReader& read
   // Open at 0: a zero floor would let softening drive F0 to 0 and Psi to infinity.
   p.minimum_yield_stress =
       reader.optional("minimum_yield_stress", 0.01 * p.yield_stress, 0.0, p.yield_stress, true);
+  // Off unless given: a soil with cohesion carries some tension, and how much is the user's call.
+  p.tension_cutoff = reader.optional("tension_cutoff", infinity, 0.0, infinity);
   return std::make_unique<PerzynaVonMises>(elastic.density, elastic.elastic, p);
 }
 

@@ -7,6 +7,8 @@
 // Softening stops at `minimum_yield_stress`, so that F0 = Y never reaches 0.
 #pragma once
 
+#include <limits>
+
 #include "rktsph/materials/invariants.hpp"
 #include "rktsph/materials/material.hpp"
 #include "rktsph/materials/parameter_reader.hpp"
@@ -19,6 +21,8 @@ struct PerzynaVonMisesParameters {
   double fluidity = 0.0;              // gamma [1/s], > 0
   double exponent = 1.0;              // N [-], > 0
   double minimum_yield_stress = 0.0;  // floor of Y under softening [Pa], in (0, Y0]
+  /// Largest mean stress [Pa], >= 0; +infinity (the default) leaves tension unlimited.
+  double tension_cutoff = std::numeric_limits<double>::infinity();
 };
 
 class PerzynaVonMises final : public Material {
@@ -29,7 +33,7 @@ class PerzynaVonMises final : public Material {
 
   PerzynaVonMises(double density, ElasticConstants elastic, PerzynaVonMisesParameters parameters);
   /// Keys: density, young_modulus, poisson_ratio, yield_stress, hardening_modulus (0),
-  /// fluidity, exponent (1), minimum_yield_stress (0.01 yield_stress).
+  /// fluidity, exponent (1), minimum_yield_stress (0.01 yield_stress), tension_cutoff (none).
   static std::unique_ptr<Material> from_parameters(ParameterReader& reader);
 
   std::string model_name() const override { return "perzyna_von_mises"; }
@@ -37,6 +41,7 @@ class PerzynaVonMises final : public Material {
   std::vector<std::string> internal_names() const override;
   void initial_internal(std::span<double> internal) const override;
   bool is_elastic() const override { return false; }
+  double tension_cutoff() const override { return parameters_.tension_cutoff; }
   void viscoplastic_rate(const SymmetricTensor& stress, std::span<const double> internal,
                          SymmetricTensor& strain_rate,
                          std::span<double> internal_rate) const override;

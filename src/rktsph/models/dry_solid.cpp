@@ -269,6 +269,32 @@ void DrySolid::stress_source(const Material& material, const StiffnessMatrix& st
 void DrySolid::advance_stress(const Material& material, const StiffnessMatrix& stiffness,
                               const double* rate_sigma, double time, double interval, double* sigma,
                               double* kappa) const {
+  integrate_stress(material, stiffness, rate_sigma, time, interval, sigma, kappa);
+  cut_tension(material.tension_cutoff(), sigma);
+}
+
+void DrySolid::cut_tension(double limit, double* sigma) const {
+  if (!std::isfinite(limit)) return;
+  // p = tr(sigma)/3 over the full tensor; the stress-free normal components are zero.
+  double trace = 0.0;
+  int normals = 0;
+  const int ns = layout_.stress_count();
+  for (int c = 0; c < ns; ++c)
+    if (stress_slot_[static_cast<std::size_t>(c)] < 3) {
+      trace += sigma[c];
+      ++normals;
+    }
+  const double excess = trace / 3.0 - limit;
+  if (!(excess > 0.0) || normals == 0) return;
+  // Shifting the carried normal components alike lowers p by exactly the excess (eq. 1.7).
+  const double shift = 3.0 * excess / normals;
+  for (int c = 0; c < ns; ++c)
+    if (stress_slot_[static_cast<std::size_t>(c)] < 3) sigma[c] -= shift;
+}
+
+void DrySolid::integrate_stress(const Material& material, const StiffnessMatrix& stiffness,
+                                const double* rate_sigma, double time, double interval,
+                                double* sigma, double* kappa) const {
   (void)time;  // the stress source is autonomous; kept for models with time-dependent sources
   const int ns = layout_.stress_count();
   if (material.is_elastic()) {

@@ -113,6 +113,12 @@ class DrySolid : public PhysicsModel {
   void advance_stress(const Material& material, const StiffnessMatrix& stiffness,
                       const double* rate_sigma, double time, double interval, double* sigma,
                       double* kappa) const;
+  // The sub-stepped update of advance_stress, before the tension cut-off.
+  void integrate_stress(const Material& material, const StiffnessMatrix& stiffness,
+                        const double* rate_sigma, double time, double interval, double* sigma,
+                        double* kappa) const;
+  // Returns a mean stress above the material's tension cut-off onto it (docs/theory.md §1.7).
+  void cut_tension(double limit, double* sigma) const;
   // Stress source -D^e : eps_dot^vp in the carried components.
   void stress_source(const Material& material, const StiffnessMatrix& stiffness,
                      const double* sigma, const double* kappa, double* sigma_rate,

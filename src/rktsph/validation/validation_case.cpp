@@ -1,10 +1,17 @@
 #include "rktsph/validation/validation_case.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <exception>
+#include <mutex>
+#include <optional>
 #include <stdexcept>
+#include <thread>
+
+#include <omp.h>
 
 #include "rktsph/output/atomic_file.hpp"
 #include "rktsph/output/json_writer.hpp"
@@ -198,6 +205,35 @@ ValidationResult run_validation(const ValidationCase& validation,
     result.passed = false;
   }
   return result;
+}
+
+void run_validations(const std::vector<const ValidationCase*>& cases,
+                     const ValidationContext& context, int jobs, int threads,
+                     const std::function<void(const ValidationResult&)>& done) {
+  std::vector<std::optional<ValidationResult>> results(cases.size());
+  std::mutex mutex;
+  std::condition_variable finished;
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    omp_set_num_threads(std::max(threads, 1));  // this thread's OpenMP teams
+    for (std::size_t i = next++; i < cases.size(); i = next++) {
+      ValidationResult result = run_validation(*cases[i], context);
+      const std::lock_guard<std::mutex> lock(mutex);
+      results[i] = std::move(result);
+      finished.notify_one();
+    }
+  };
+  const std::size_t workers = std::min(cases.size(), static_cast<std::size_t>(std::max(jobs, 1)));
+  std::vector<std::jthread> pool;
+  for (std::size_t w = 0; w < workers; ++w)
+    pool.emplace_back(work);
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    std::unique_lock<std::mutex> lock(mutex);
+    finished.wait(lock, [&] { return results[i].has_value(); });
+    const ValidationResult result = *results[i];
+    lock.unlock();
+    done(result);
+  }
 }
 
 std::string validation_json_line(const ValidationResult& result) {

@@ -160,6 +160,15 @@ CheckResult check_at_most(std::string name, double value, double reference, doub
 CheckResult check_at_least(std::string name, double value, double reference, double minimum,
                            std::string unit);
 
+/// Runs `cases` with up to `jobs` of them at once, each on `threads` OpenMP threads of its own,
+/// and hands each result to `done` in the order of `cases`, as soon as it and every case before
+/// it have finished (`done` is called on the calling thread). The cases' runs write to separate
+/// folders and share no state, so running them side by side changes no result; on a machine
+/// whose cores would otherwise wait at the barriers of small runs it shortens the whole.
+void run_validations(const std::vector<const ValidationCase*>& cases,
+                     const ValidationContext& context, int jobs, int threads,
+                     const std::function<void(const ValidationResult&)>& done);
+
 /// The JSON line of the output contract.
 std::string validation_json_line(const ValidationResult& result);
 
