@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,20 +32,27 @@ std::string case_path(const std::string& size) {
 }
 
 /// One simulation at a time (XL holds about a gigabyte), reused across the repetitions of its
-/// size so that setup is paid once. The state keeps advancing from one repetition to the next,
+/// case so that setup is paid once. The state keeps advancing from one repetition to the next,
 /// which does not change the cost of a linear elastic step.
-/// `model` overrides the case's (the large-deformation model on the same bar).
-Simulation& simulation_for(const std::string& size, const std::string& model = "") {
+Simulation& cached_simulation(const std::string& path, const std::vector<CaseOverride>& overrides) {
   static std::unique_ptr<Simulation> cached;
   static std::string cached_key;
-  const std::string key = size + "/" + model;
+  std::string key = path;
+  for (const CaseOverride& change : overrides)
+    key += " " + change.key + "=" + change.value;
   if (cached && cached_key == key) return *cached;
   cached.reset();
-  std::vector<CaseOverride> overrides;
-  if (!model.empty()) overrides.push_back({"model", model});
-  cached = std::make_unique<Simulation>(read_case_file(case_path(size), overrides));
+  cached = std::make_unique<Simulation>(read_case_file(path, overrides));
   cached_key = key;
   return *cached;
+}
+
+/// The bar of one size; `model` overrides the case's (the large-deformation model on the same
+/// bar).
+Simulation& simulation_for(const std::string& size, const std::string& model = "") {
+  std::vector<CaseOverride> overrides;
+  if (!model.empty()) overrides.push_back({"model", model});
+  return cached_simulation(case_path(size), overrides);
 }
 
 bool all_finite(const FieldArray& fields) {
@@ -53,11 +61,11 @@ bool all_finite(const FieldArray& fields) {
   return true;
 }
 
-void step_benchmark(benchmark::State& bench_state, const std::string& size,
-                    const std::string& model) {
+void step_benchmark(benchmark::State& bench_state,
+                    const std::function<Simulation&()>& make_simulation) {
   Simulation* simulation = nullptr;
   try {
-    simulation = &simulation_for(size, model);
+    simulation = &make_simulation();
   } catch (const std::exception& error) {
     bench_state.SkipWithError(error.what());
     return;
@@ -83,13 +91,27 @@ void step_benchmark(benchmark::State& bench_state, const std::string& size,
 }
 
 void BM_BarWaveStep(benchmark::State& bench_state, const std::string& size) {
-  step_benchmark(bench_state, size, "");
+  step_benchmark(bench_state, [&]() -> Simulation& { return simulation_for(size); });
 }
 
 /// The same bar with the large-deformation model (docs/theory.md §9): the nodes move, and every
 /// step rebuilds its operators and turns its faces on the new configuration.
 void BM_MovingBarWaveStep(benchmark::State& bench_state, const std::string& size) {
-  step_benchmark(bench_state, size, "dry_large_deformation");
+  step_benchmark(bench_state,
+                 [&]() -> Simulation& { return simulation_for(size, "dry_large_deformation"); });
+}
+
+/// The first steps of the collapsing low-cohesion block (cases/ld-slope-low-cohesion,
+/// docs/theory.md §9.14) at `spacing`: a viscoplastic body flowing under gravity, with its rigid
+/// base found again after every move.
+void BM_LowCohesionSlopeStep(benchmark::State& bench_state, const std::string& spacing) {
+  step_benchmark(bench_state, [&]() -> Simulation& {
+    const char* override_dir = std::getenv("RKTSPH_CASES_DIR");
+    const std::string cases_dir =
+        override_dir ? std::string(override_dir) : std::string(RKTSPH_SOURCE_DIR) + "/cases";
+    return cached_simulation(cases_dir + "/ld-slope-low-cohesion/case.yaml",
+                             {{"geometry.spacing", spacing}, {"output.interval", "0"}});
+  });
 }
 
 BENCHMARK_CAPTURE(BM_BarWaveStep, s, std::string("s"))
@@ -119,6 +141,16 @@ BENCHMARK_CAPTURE(BM_MovingBarWaveStep, m, std::string("m"))
     ->UseRealTime();
 BENCHMARK_CAPTURE(BM_MovingBarWaveStep, l, std::string("l"))
     ->Iterations(5)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// 10,201 and 40,401 nodes (dx = 0.1 m and 0.05 m on the 10 m block).
+BENCHMARK_CAPTURE(BM_LowCohesionSlopeStep, s, std::string("0.1"))
+    ->Iterations(20)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_LowCohesionSlopeStep, m, std::string("0.05"))
+    ->Iterations(10)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

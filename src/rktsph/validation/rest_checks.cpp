@@ -83,7 +83,8 @@ double FootingContactSampler::sample(const Simulation& simulation) {
   const double s = settlement.value.front() / width;
   if (s < from || s > to) return s;
   last = contact_pressure(simulation, surface, x_min, x_max);
-  largest_ratio = std::max(largest_ratio, contact_pressure_oddeven_ratio(last));
+  const double ratio = contact_pressure_oddeven_ratio(last);
+  if (std::isnan(largest_ratio) || ratio > largest_ratio) largest_ratio = ratio;
   return s;
 }
 

@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <span>
 #include <string>
 #include <utility>
@@ -64,10 +65,20 @@ double contact_pressure_oddeven_ratio(const NodeLine& pressure);
 /// settlement (that of its node at x_min, over `width`) lies within [from, to]: the largest
 /// contact_pressure_oddeven_ratio and the last pressure line.
 struct FootingContactSampler {
+  FootingContactSampler(double surface_y, double left, double right, double footing_width,
+                        double window_from, double window_to)
+      : surface(surface_y),
+        x_min(left),
+        x_max(right),
+        width(footing_width),
+        from(window_from),
+        to(window_to) {}
   double surface = 0.0, x_min = 0.0, x_max = 0.0;  // the footing row (reference positions) [m]
   double width = 1.0, from = 0.0, to = 0.0;        // settlement window, over `width`
   NodeLine last;
-  double largest_ratio = 0.0;
+  /// The largest odd-even ratio over the samples in the window; NaN (not measured, a failed
+  /// check) until the settlement has entered it.
+  double largest_ratio = std::numeric_limits<double>::quiet_NaN();
   /// Samples `simulation` if its settlement is in the window; returns the settlement over width.
   double sample(const Simulation& simulation);
 };

@@ -143,8 +143,7 @@ std::vector<CheckResult> validate_ld_strip_footing_bearing(const ValidationConte
   const double spacing = description.geometry.spacing;
   const int footing_nodes = static_cast<int>(std::lround(kHalfWidth / spacing)) + 1;
 
-  FootingContactSampler contact{kSurface,     0.0,        kHalfWidth, kFootingWidth,
-                                kPlateauFrom, kPlateauTo, {},         0.0};
+  FootingContactSampler contact{kSurface, 0.0, kHalfWidth, kFootingWidth, kPlateauFrom, kPlateauTo};
   SampledObserver plateau_states(kSampling,
                                  [&](const Simulation& simulation) { contact.sample(simulation); });
   // A run that stops early (a cell folding at the footing's edge, docs/theory.md §9.12) is checked

@@ -150,9 +150,8 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
 
   // The band at s = 0.1 B, the contact pressure at every field output on the plateau.
   std::optional<BandMeasurement> band;
-  FootingContactSampler contact{
-      kCrestY, kFootingLeft, kFootingLeft + kFootingWidth, kFootingWidth, kPlateauFrom, kPlateauTo,
-      {},      0.0};
+  FootingContactSampler contact{kCrestY,       kFootingLeft, kFootingLeft + kFootingWidth,
+                                kFootingWidth, kPlateauFrom, kPlateauTo};
   SampledObserver plateau_states(kSampling, [&](const Simulation& simulation) {
     if (contact.sample(simulation) >= kPlateauFrom && !band) band = measure_wedge_band(simulation);
   });
