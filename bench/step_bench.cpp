@@ -23,12 +23,17 @@
 namespace rktsph {
 namespace {
 
-/// The case file of one size; RKTSPH_CASES_DIR (if set) replaces the source tree's cases/.
-std::string case_path(const std::string& size) {
+/// The case file of a bundled folder; RKTSPH_CASES_DIR (if set) replaces the source tree's cases/.
+std::string bundled_case(const std::string& folder) {
   const char* override_dir = std::getenv("RKTSPH_CASES_DIR");
   const std::string cases_dir =
       override_dir ? std::string(override_dir) : std::string(RKTSPH_SOURCE_DIR) + "/cases";
-  return cases_dir + "/bar-wave-2d-" + size + "/case.yaml";
+  return cases_dir + "/" + folder + "/case.yaml";
+}
+
+/// The case file of one size of the bar.
+std::string case_path(const std::string& size) {
+  return bundled_case("bar-wave-2d-" + size);
 }
 
 /// One simulation at a time (XL holds about a gigabyte), reused across the repetitions of its
@@ -106,10 +111,7 @@ void BM_MovingBarWaveStep(benchmark::State& bench_state, const std::string& size
 /// base found again after every move.
 void BM_LowCohesionSlopeStep(benchmark::State& bench_state, const std::string& spacing) {
   step_benchmark(bench_state, [&]() -> Simulation& {
-    const char* override_dir = std::getenv("RKTSPH_CASES_DIR");
-    const std::string cases_dir =
-        override_dir ? std::string(override_dir) : std::string(RKTSPH_SOURCE_DIR) + "/cases";
-    return cached_simulation(cases_dir + "/ld-slope-low-cohesion/case.yaml",
+    return cached_simulation(bundled_case("ld-slope-low-cohesion"),
                              {{"geometry.spacing", spacing}, {"output.interval", "0"}});
   });
 }

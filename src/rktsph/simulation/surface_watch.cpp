@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include "rktsph/boundary/surface_set.hpp"
+
 namespace rktsph {
 
 void detect_current_surface(const Simulation& simulation, FreeSurface& out) {
@@ -16,14 +18,13 @@ void detect_current_surface(const Simulation& simulation, FreeSurface& out) {
 }
 
 std::vector<std::uint8_t> lattice_perimeter(const NodeSets& nodes) {
+  // The lattice faces with no mirror plane closing any of them: the detector sees no images.
+  const std::vector<std::uint8_t> no_mirrors(nodes.sph_nodes.size(), 0);
+  SurfaceSet outline;
+  lattice_surface(nodes, no_mirrors, outline);
   std::vector<std::uint8_t> perimeter(nodes.sph_nodes.size(), 0);
-  for (std::size_t i = 0; i < perimeter.size(); ++i)
-    for (int a = 0; a < nodes.dimension && !perimeter[i]; ++a)
-      for (const int sign : {-1, 1}) {
-        LatticeIndex index = nodes.node_index[i];
-        index[static_cast<std::size_t>(a)] += sign;
-        if (nodes.node_at(index) < 0) perimeter[i] = 1;
-      }
+  for (std::int32_t node : outline.node)
+    perimeter[static_cast<std::size_t>(node)] = 1;
   return perimeter;
 }
 

@@ -11,9 +11,8 @@
 //                         the failure into large deformation).
 //   softening_drop        (peak - end)/peak of the footing pressure of the softening run (>= 0.1).
 //   contact_pressure_oddeven_ratio  the odd-even part of the node-by-node contact pressure
-//   -sigma_yy
-//                         on the interior footing nodes over its mean (rest_checks.hpp), the
-//                         largest over the field states on the plateau of the first run.
+//                         -sigma_yy on the interior footing nodes over its mean (rest_checks.hpp),
+//                         the largest over the field states on the plateau of the first run.
 //   shear_band_angle      the band of eps_vp of the first run when the settlement reaches 0.1 B, on
 //                         the reference positions of the nodes (the material band), measured from
 //                         the vertical: 45° ± 5° (docs/theory.md §8.7).

@@ -64,15 +64,6 @@ constexpr double kHoldStart = 5.05;
 constexpr double kPlateauStart = 0.8 * kPushEnd;
 constexpr double kPlateauSampling = 0.5;
 
-// Mean over the footing nodes with trapezoidal weights (the two end nodes count half), from the
-// group mean of the probe and the two end-node probes.
-double footing_pressure(const ProbeTable& probes, std::size_t row, int node_count) {
-  const double sum = probes.column("footing.total_stress_yy")[row] * node_count;
-  const double ends =
-      probes.column("inner.total_stress_yy")[row] + probes.column("crest.total_stress_yy")[row];
-  return -(sum - 0.5 * ends) / (node_count - 1);
-}
-
 BandMeasurement measure_wedge_band(const Simulation& simulation) {
   return measure_band_in_region(simulation, "vpw-vertical-cut-footing",
                                 kFootingLeft - kFootingWidth, kCrestY - kBandRegionDepth);
@@ -108,17 +99,15 @@ FinalState final_state(const Simulation& simulation, double threshold) {
 
 /// Footing pressure against settlement and time with the 2c plateau, the band's centre line
 /// against the 45-degree line from the footing edge, and pictures of eps_vp and p_w.
-void report_vertical_cut(ValidationReport& report, const std::filesystem::path& run_directory,
-                         const ProbeTable& probes, int footing_nodes, double spacing, double limit,
-                         double plateau, double plateau_start, const BandMeasurement& band,
-                         const FinalState& state) {
-  const auto& time = probes.time();
-  const auto& displacement = probes.column("footing.displacement_y");
+void report_vertical_cut(ValidationReport& report, const FootingHistory& history, double spacing,
+                         double limit, double plateau, double plateau_start,
+                         const BandMeasurement& band, const FinalState& state) {
+  const auto& time = history.time;
   Series load_settlement{"SPH, mean total vertical stress under the footing", {}, {}, "line"};
   Series load_history{"SPH, mean total vertical stress under the footing", time, {}, "line"};
   for (std::size_t row = 0; row < time.size(); ++row) {
-    const double pressure = 1e-3 * footing_pressure(probes, row, footing_nodes);
-    load_settlement.x.push_back(-1e3 * displacement[row]);
+    const double pressure = 1e-3 * history.pressure[row];
+    load_settlement.x.push_back(1e3 * history.settlement[row]);
     load_settlement.y.push_back(pressure);
     load_history.y.push_back(pressure);
   }
@@ -172,11 +161,11 @@ void report_vertical_cut(ValidationReport& report, const std::filesystem::path& 
       "must come to rest.",
       kFootingWidth, spacing, kPushEnd, 1e-3 * limit, plateau_start, kPushEnd, 1e-3 * plateau,
       line.angle_deg, reference_angle));
-  report.add_picture({"eps_vp", run_directory.string(), "eps_vp", -1, kPushEnd, 0.0,
+  report.add_picture({"eps_vp", history.directory.string(), "eps_vp", -1, kPushEnd, 0.0,
                       "Equivalent viscoplastic strain at the end of the push: the band from the "
                       "inner footing edge (x = 6 m, top) down to the cut face (x = 8 m)."});
   report.add_picture(
-      {"pore_pressure", run_directory.string(), "pore_pressure", -1, kPushEnd, 0.0,
+      {"pore_pressure", history.directory.string(), "pore_pressure", -1, kPushEnd, 0.0,
        fmt::format("Excess pore pressure at the end of the push (drained top and face). Largest "
                    "|p_w|: {:.0f} "
                    "kPa at the node (x, y) = ({:g}, {:g}) m, {:.1f} times 2 c_u.",
@@ -220,19 +209,21 @@ std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationConte
   const std::filesystem::path run_directory =
       run_for_validation(context, description, context.quick ? "quick" : "full", {},
                          {&push_states, &speeds.observer()});
-  const ProbeTable probes = ProbeTable::read(run_directory / "probes.csv");
+  // The footing pressure of the total stress, trapezoidal over the footing's nodes.
+  const FootingHistory history =
+      read_footing_history(run_directory, footing_nodes, "total_stress_yy", "inner", "crest");
   if (!band) throw RunError("vpw-vertical-cut-footing: the band was not measured");
   if (contact_samples == 0)
     throw RunError("vpw-vertical-cut-footing: no contact pressure sample on the plateau");
 
   double plateau = 0.0;
   int samples = 0;
-  const auto& time = probes.time();
+  const auto& time = history.time;
   // The rows from kPlateauStart up to the first one at or after kPushEnd: the same rows as when
   // the run ended with the push (its last step lands just after 5 s).
   for (std::size_t row = 0; row < time.size(); ++row) {
     if (time[row] < kPlateauStart) continue;
-    plateau += footing_pressure(probes, row, footing_nodes);
+    plateau += history.pressure[row];
     ++samples;
     if (time[row] >= kPushEnd) break;
   }
@@ -242,8 +233,8 @@ std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationConte
       references::von_mises_plane_strain_cohesion(kYieldStress));
   const double residual = residual_velocity_ratio(speeds.history(), kHoldStart);
   if (context.report) {
-    report_vertical_cut(*context.report, run_directory, probes, footing_nodes, spacing, limit,
-                        plateau, kPlateauStart, *band, state);
+    report_vertical_cut(*context.report, history, spacing, limit, plateau, kPlateauStart, *band,
+                        state);
     Series measured{"SPH footing nodes", contact.x, {}, "line"};
     for (double p : contact.value)
       measured.y.push_back(1e-3 * p);
