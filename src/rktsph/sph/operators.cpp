@@ -62,6 +62,14 @@ Vector reflect(Vector x, const std::vector<MirrorPlane>& mirrors, unsigned subse
   return x;
 }
 
+// x^n for the small exponents of a dimension, without a call to pow in every row.
+double integer_power(double x, int n) {
+  double result = 1.0;
+  for (int k = 0; k < n; ++k)
+    result *= x;
+  return result;
+}
+
 }  // namespace
 
 void check_mirror_count(const OperatorOptions& options) {
@@ -124,8 +132,15 @@ bool compute_row(int dimension, const Vector& target, std::span<const StencilSou
       offset[a] = target[a] - s.position[a];
       r2 += offset[a] * offset[a];
     }
-    const double w = kernel.value(std::sqrt(r2), h) * s.volume;
-    const Vector g = kernel.gradient(offset, h);
+    // One square root for both (Kernel::gradient's own expression, so the weights are unchanged).
+    const double distance = std::sqrt(r2);
+    const double w = kernel.value(distance, h) * s.volume;
+    Vector g{};
+    if (r2 > 0.0) {
+      const double radial = kernel.derivative(distance, h) / distance;
+      for (int a = 0; a < d; ++a)
+        g[a] = radial * offset[a];
+    }
     slots.source[k] = s.column;
     slots.reflection[k] = s.reflection;
     interpolation[k] = w;
@@ -153,7 +168,8 @@ bool compute_row(int dimension, const Vector& target, std::span<const StencilSou
     for (int a = 0; a < d; ++a) {
       const double g = gradient[a][k];
       g_norm += g * g;
-      x_norm += std::pow(stencil[k].position[a] - reference_point[a], 2);
+      const double x = stencil[k].position[a] - reference_point[a];
+      x_norm += x * x;
       for (int b = 0; b < d; ++b)
         correction[a][b] += g * (stencil[k].position[b] - reference_point[b]);
     }
@@ -161,7 +177,7 @@ bool compute_row(int dimension, const Vector& target, std::span<const StencilSou
   }
   const double det = determinant(correction, d);
   const bool regular = n > 0 && weight_sum > 0.0 && scale > 0.0 &&
-                       std::abs(det) >= options.degeneracy_tolerance * std::pow(scale / d, d);
+                       std::abs(det) >= options.degeneracy_tolerance * integer_power(scale / d, d);
 
   Matrix inverse_correction{};
   if (regular) {

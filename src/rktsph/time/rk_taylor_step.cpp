@@ -32,6 +32,7 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
     // the uncorrected gradient and is counted; one that is degenerate from the start is an error
     // of the case, thrown by the build above (docs/theory.md §9.5).
     builder_.fall_back_on_degenerate_stencils();
+    builder_.keep_filter_weights_per_row();
     motion_.emplace(reference);
     predicted_nodes_ = reference.sph_nodes;
   }

@@ -210,8 +210,10 @@ void StepOperatorBuilder::build_filter_tables(const Configuration& configuration
   build_cross_operator(configuration.sph_nodes, filter_point_cells, filter_options,
                        ops.filter_to_nodes, workspace_, nullptr, TableWeights::InterpolationOnly);
   // Interior rows share one stencil: less memory traffic in the filter (docs/theory.md §3.3).
-  share_row_weights(ops.filter_to_points, share_workspace_);
-  share_row_weights(ops.filter_to_nodes, share_workspace_);
+  if (share_filter_weights_) {
+    share_row_weights(ops.filter_to_points, share_workspace_);
+    share_row_weights(ops.filter_to_nodes, share_workspace_);
+  }
 }
 
 }  // namespace rktsph

@@ -90,6 +90,10 @@ class StepOperatorBuilder {
   /// From now on a row whose stencil cannot be made regular takes the uncorrected gradient and is
   /// counted in StepOperators::fallback_rows, instead of stopping the run (moving configurations).
   void fall_back_on_degenerate_stencils() { fall_back_ = true; }
+  /// From now on the filter's rows keep their own weights instead of sharing them by stencil: on a
+  /// moving configuration no two rows are alike, so the sharing pass would cost a quarter of the
+  /// rebuild and save nothing (docs/theory.md §9.5).
+  void keep_filter_weights_per_row() { share_filter_weights_ = false; }
 
  private:
   const NodeSets& reference_;
@@ -102,6 +106,7 @@ class StepOperatorBuilder {
   // copied into later builds' operators (a moving configuration keeps its topology, §9.1).
   bool classified_ = false;
   bool fall_back_ = false;
+  bool share_filter_weights_ = true;
   /// Counts `rows` degenerate rows, or throws `message` for the first when not falling back.
   void degenerate(std::size_t rows, StepOperators& operators, const std::string& message) const;
   std::vector<std::int32_t> boundary_nodes_, node_to_boundary_row_, incomplete_nodes_;
