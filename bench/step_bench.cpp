@@ -66,6 +66,22 @@ bool all_finite(const FieldArray& fields) {
   return true;
 }
 
+// The shares of the timed steps' wall time (docs/theory.md §9.5), in per cent: the cell lists of
+// the neighbour search, the operator tables (stencils and weights), moving the configuration and
+// its faces, and the rest of the step. The first two are zero on a fixed configuration.
+void report_time_split(benchmark::State& bench_state, const StepTimeSplit& before,
+                       const StepTimeSplit& after) {
+  const double total = after.total() - before.total();
+  if (!(total > 0.0)) return;
+  auto share = [&](double StepTimeSplit::*part) {
+    return 100.0 * (after.*part - before.*part) / total;
+  };
+  bench_state.counters["pct_cell_lists"] = share(&StepTimeSplit::cell_lists);
+  bench_state.counters["pct_tables"] = share(&StepTimeSplit::operator_tables);
+  bench_state.counters["pct_surface"] = share(&StepTimeSplit::surface);
+  bench_state.counters["pct_integration"] = share(&StepTimeSplit::integration);
+}
+
 void step_benchmark(benchmark::State& bench_state,
                     const std::function<Simulation&()>& make_simulation) {
   Simulation* simulation = nullptr;
@@ -79,10 +95,12 @@ void step_benchmark(benchmark::State& bench_state,
   State& state = simulation->state();
   const double dt = simulation->time_step();
 
+  const StepTimeSplit before = step.time_split();
   for (auto _ : bench_state) {
     step.advance(state, dt);
     benchmark::ClobberMemory();
   }
+  report_time_split(bench_state, before, step.time_split());
 
   if (!all_finite(state.fields)) {
     bench_state.SkipWithError("the state became non-finite");

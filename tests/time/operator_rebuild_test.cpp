@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -201,6 +202,36 @@ TEST(OperatorRebuild, ClassifiesBoundaryNodesFromTheCellsAroundThem) {
   const auto& incomplete = operators.incomplete_nodes;
   EXPECT_NE(std::find(incomplete.begin(), incomplete.end(), nodes.node_at({6, 3, 0})),
             incomplete.end());
+}
+
+// The time split of docs/theory.md §9.5: a fixed configuration builds its tables once, before the
+// run, so its steps spend nothing on cell lists, tables or moving; a moving one spends on each.
+// The parts are pieces of the steps, so together they cannot exceed the loop's wall time.
+TEST(StepTimeSplit, OnlyAMovingConfigurationRebuildsAndTheSplitFitsInTheSteps) {
+  for (const bool moving : {false, true}) {
+    const std::vector<CaseOverride> overrides =
+        moving ? std::vector<CaseOverride>{{"model", "dry_large_deformation"}}
+               : std::vector<CaseOverride>{};
+    Simulation simulation(read_case_text(loaded_cut("{}"), "cut.yaml", overrides));
+    const auto start = std::chrono::steady_clock::now();
+    for (int s = 0; s < 10; ++s)
+      simulation.step().advance(simulation.state(), simulation.time_step());
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const StepTimeSplit split = simulation.step().time_split();
+    SCOPED_TRACE(moving ? "moving" : "fixed");
+    EXPECT_GT(split.integration, 0.0);
+    EXPECT_LE(split.total(), wall);
+    if (moving) {
+      EXPECT_GT(split.cell_lists, 0.0);
+      EXPECT_GT(split.operator_tables, 0.0);
+      EXPECT_GT(split.surface, 0.0);
+    } else {
+      EXPECT_EQ(split.cell_lists, 0.0);
+      EXPECT_EQ(split.operator_tables, 0.0);
+      EXPECT_EQ(split.surface, 0.0);
+    }
+  }
 }
 
 }  // namespace

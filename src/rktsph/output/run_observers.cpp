@@ -440,6 +440,13 @@ void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,
   summary.set("boundary_nodes", simulation.step().operators().boundary_nodes.size());
   summary.set("threads", omp_get_max_threads());
   set_program(summary);
+  const StepTimeSplit split = simulation.step().time_split();
+  JsonValue step_time = JsonValue::object();
+  step_time.set("cell_lists_seconds", split.cell_lists);
+  step_time.set("operator_tables_seconds", split.operator_tables);
+  step_time.set("surface_seconds", split.surface);
+  step_time.set("integration_seconds", split.integration);
+  summary.set("step_time", std::move(step_time));
   if (const PressureProjection* projection = simulation.pressure_projection()) {
     const SolverStatistics& stats = projection->statistics();
     JsonValue solver = JsonValue::object();

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "rktsph/core/error.hpp"
@@ -27,6 +28,7 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
   const std::size_t nv = reference.stress_points.size();
   const std::size_t ns = reference.sph_nodes.size();
   builder_.build(configuration, operators_);
+  cell_list_seconds_at_start_ = builder_.time_split().cell_lists;
   if (policy == OperatorPolicy::CurrentConfiguration) {
     // A stencil that degenerates as the body deforms (nodes squeezed into a line on a wall) takes
     // the uncorrected gradient and is counted; one that is degenerate from the start is an error
@@ -154,8 +156,22 @@ void RkTaylorStep::rebuild_operators(const Configuration& configuration) {
   bind_operators(configuration);
 }
 
+StepTimeSplit RkTaylorStep::time_split() const {
+  StepTimeSplit split;
+  split.cell_lists = builder_.time_split().cell_lists - cell_list_seconds_at_start_;
+  split.operator_tables = std::max(0.0, rebuild_seconds_ - split.cell_lists);
+  split.surface = surface_seconds_;
+  split.integration = std::max(0.0, advance_seconds_ - rebuild_seconds_ - surface_seconds_);
+  return split;
+}
+
 void RkTaylorStep::advance(State& state, double dt) {
-  if (policy_ == OperatorPolicy::CurrentConfiguration) rebuild_operators(state.configuration);
+  const auto start = std::chrono::steady_clock::now();
+  auto clock = start;
+  if (policy_ == OperatorPolicy::CurrentConfiguration) {
+    rebuild_operators(state.configuration);
+    rebuild_seconds_ += lap(clock);
+  }
   step_stress_points(state, dt);
   step_boundary_nodes(state, dt);
   step_nodes(state, dt);
@@ -164,7 +180,13 @@ void RkTaylorStep::advance(State& state, double dt) {
   add_half_step_displacement(state, dt);  // the v^{n+1} half of the trapezoidal rule
   state.time += dt;
   ++state.step;
-  if (motion_) move_configuration(state);
+  if (motion_) {
+    lap(clock);
+    move_configuration(state);
+    surface_seconds_ += lap(clock);
+  }
+  advance_seconds_ +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void RkTaylorStep::move_configuration(State& state) {

@@ -75,6 +75,8 @@ class RkTaylorStep {
   /// The conditions whose faces follow the moving configuration (policy CurrentConfiguration):
   /// the same object as the step's conditions, which it turns after every move.
   void set_moving_surface(BoundaryConditions* conditions) { moving_surface_ = conditions; }
+  /// Where the wall time of every advance so far went (docs/theory.md §9.5).
+  StepTimeSplit time_split() const;
   /// The motion of the configuration (policy CurrentConfiguration), or null.
   const ConfigurationMotion* motion() const { return motion_ ? &*motion_ : nullptr; }
   /// Applies the hourglass filter of step 3 alone (docs/theory.md eq. 3.1); no-op when it is off.
@@ -116,7 +118,13 @@ class RkTaylorStep {
   StepOperatorBuilder builder_;
   OperatorPolicy policy_;
   StepOperators operators_;
-  std::optional<ConfigurationMotion> motion_;  // with the policy CurrentConfiguration
+  std::optional<ConfigurationMotion> motion_;
+  // The time split (docs/theory.md §9.5): every advance, its rebuilds, its moves [s].
+  double advance_seconds_ = 0.0;
+  double rebuild_seconds_ = 0.0;
+  double surface_seconds_ = 0.0;
+  double cell_list_seconds_at_start_ =
+      0.0;  // the constructor's build  // with the policy CurrentConfiguration
   // Where dv_a/dx_c sits (a * d + c): in a gradient of every field, in one of the velocity only.
   std::vector<int> velocity_gradient_of_fields_, velocity_gradient_of_velocity_;
   HourglassFields hourglass_fields_ = HourglassFields::Velocity;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <chrono>
 
 #include "rktsph/core/error.hpp"
 #include "rktsph/time/step_operators.hpp"
@@ -109,8 +110,10 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
   const PointCloud& points = configuration.stress_points;
   const OperatorOptions& options = operator_options_;
   const double support = options.kernel.support_radius(options.smoothing_length);
+  auto clock = std::chrono::steady_clock::now();
   node_cells_.rebuild(nodes, support);
   point_cells_.rebuild(points, support);
+  time_split_.cell_lists += lap(clock);
   const CellList& node_cells = node_cells_;
   const CellList& point_cells = point_cells_;
 
@@ -186,6 +189,7 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
         fmt::format("the boundary node at {} has a degenerate collocated stencil",
                     describe_point(nodes, static_cast<std::size_t>(
                                               ops.boundary_nodes[report.degenerate_rows[0]]))));
+  time_split_.operator_tables += lap(clock);
 }
 
 void StepOperatorBuilder::degenerate(std::size_t rows, StepOperators& operators,
@@ -200,8 +204,10 @@ void StepOperatorBuilder::build_filter_tables(const Configuration& configuration
   const OperatorOptions& filter_options = filter_options_;
   const double filter_support =
       filter_options.kernel.support_radius(filter_options.smoothing_length);
+  auto clock = std::chrono::steady_clock::now();
   node_cells_.rebuild(configuration.sph_nodes, filter_support);
   point_cells_.rebuild(configuration.stress_points, filter_support);
+  time_split_.cell_lists += lap(clock);
   const CellList& filter_node_cells = node_cells_;
   const CellList& filter_point_cells = point_cells_;
   // The round trip only interpolates: the gradient weights are computed in scratch, not kept.
@@ -214,6 +220,7 @@ void StepOperatorBuilder::build_filter_tables(const Configuration& configuration
     share_row_weights(ops.filter_to_points, share_workspace_);
     share_row_weights(ops.filter_to_nodes, share_workspace_);
   }
+  time_split_.operator_tables += lap(clock);
 }
 
 }  // namespace rktsph

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rktsph/case/case_description.hpp"
+#include "rktsph/core/step_time_split.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/physics/state.hpp"
 #include "rktsph/sph/adjoint_operator.hpp"
@@ -94,6 +95,8 @@ class StepOperatorBuilder {
   /// moving configuration no two rows are alike, so the sharing pass would cost a quarter of the
   /// rebuild and save nothing (docs/theory.md §9.5).
   void keep_filter_weights_per_row() { share_filter_weights_ = false; }
+  /// The time spent on cell lists and on tables by every build so far.
+  const StepTimeSplit& time_split() const { return time_split_; }
 
  private:
   const NodeSets& reference_;
@@ -107,6 +110,7 @@ class StepOperatorBuilder {
   bool classified_ = false;
   bool fall_back_ = false;
   bool share_filter_weights_ = true;
+  StepTimeSplit time_split_;  // only cell_lists and operator_tables
   /// Counts `rows` degenerate rows, or throws `message` for the first when not falling back.
   void degenerate(std::size_t rows, StepOperators& operators, const std::string& message) const;
   std::vector<std::int32_t> boundary_nodes_, node_to_boundary_row_, incomplete_nodes_;
