@@ -217,6 +217,59 @@ then
   failures=$((failures + 1))
 fi
 
+if [[ ${RKTSPH_BENCH_MOVING:-1} != 0 ]]; then
+  echo
+  echo "== moving configuration (large-deformation model: BAR-WAVE-2D S/M/L and the collapsing"
+  echo "   low-cohesion block; every step rebuilds its tables; medians of $repetitions)"
+  moving_files=()
+  for threads in $threads_list; do
+    json=$out_dir/moving-t$threads.json
+    if run_bench "$threads" "$out_dir/moving-t$threads.log" \
+      --benchmark_filter='^BM_(MovingBarWaveStep|LowCohesionSlopeStep)/' \
+      --benchmark_repetitions="$repetitions" --benchmark_report_aggregates_only=true \
+      --benchmark_out="$json" --benchmark_out_format=json; then
+      moving_files+=("$json")
+    else
+      echo "FAILED: moving-configuration benchmarks at $threads threads (see $out_dir/moving-t$threads.log)"
+      failures=$((failures + 1))
+    fi
+  done
+  if [[ ${#moving_files[@]} -gt 0 ]] && ! python3 - "${moving_files[@]}" <<'PYTHON'
+import json
+import sys
+
+# particle-steps/s and where the step's time goes (docs/theory.md §9.5): the neighbour search's
+# cell lists, the operator tables, moving the configuration and its faces, the rest of the step.
+target = None
+print(f"{'benchmark':<28}  {'threads':>7}  {'particle-steps/s':>16}  {'cell lists':>10}  "
+      f"{'tables':>7}  {'moving':>7}  {'rest':>6}")
+for path in sys.argv[1:]:
+    with open(path) as handle:
+        report = json.load(handle)
+    threads = report["context"].get("omp_threads", "?")
+    for run in report["benchmarks"]:
+        if run.get("error_occurred"):
+            print(f"ERROR: {run['run_name']}: {run.get('error_message', '')}")
+            sys.exit(1)
+        single = run.get("run_type") == "iteration" and run.get("repetitions", 1) <= 1
+        if run.get("aggregate_name") != "median" and not single:
+            continue
+        name = run["run_name"].split("/iterations")[0]
+        print(f"{name:<28}  {threads:>7}  {run.get('items_per_second', 0.0):>16.3e}  "
+              f"{run.get('pct_cell_lists', 0.0):>9.1f}%  {run.get('pct_tables', 0.0):>6.1f}%  "
+              f"{run.get('pct_surface', 0.0):>6.1f}%  {run.get('pct_integration', 0.0):>5.1f}%")
+        if name == "BM_MovingBarWaveStep/l" and str(threads) == "2":
+            target = run.get("items_per_second", 0.0)
+if target is not None:
+    verdict = "met" if target >= 2e6 else "NOT met"
+    print(f"\nTarget of the large-deformation issue, >= 2.0e6 particle-steps/s on the moving "
+          f"BAR-WAVE-2D L with 2 threads: {verdict} ({target:.3e}).")
+PYTHON
+  then
+    failures=$((failures + 1))
+  fi
+fi
+
 echo
 echo "   load average at end: $(cat /proc/loadavg)  (total $(($(date +%s) - started)) s)"
 if [[ $failures -ne 0 ]]; then
