@@ -97,22 +97,33 @@ run_bench() {
   OMP_NUM_THREADS=$threads "$bench" --benchmark_context=omp_threads="$threads" "$@" >"$log" 2>&1
 }
 
-if [[ ${RKTSPH_BENCH_KERNELS:-1} != 0 ]]; then
-  echo
-  echo "== kernel benchmarks (medians of $repetitions; the table build is serial, run once)"
-  kernel_files=()
+# Runs the benchmarks matching FILTER once per thread count of $threads_list, medians of
+# $repetitions, into $out_dir/PREFIX-tN.json (log beside it); the JSON files of the runs that
+# succeeded are left in the array json_files, and each failure is counted.
+#   run_per_thread_count PREFIX WHAT FILTER EXTRA_ARGS...
+run_per_thread_count() {
+  local prefix=$1 what=$2 filter=$3 threads json
+  shift 3
+  json_files=()
   for threads in $threads_list; do
-    json=$out_dir/kernels-t$threads.json
-    if run_bench "$threads" "$out_dir/kernels-t$threads.log" \
-      --benchmark_filter='^BM_(ApplyOperator|NodeToStressPointTable)/' \
+    json=$out_dir/$prefix-t$threads.json
+    if run_bench "$threads" "$out_dir/$prefix-t$threads.log" --benchmark_filter="$filter" \
       --benchmark_repetitions="$repetitions" --benchmark_report_aggregates_only=true \
-      --benchmark_min_time=0.1 --benchmark_out="$json" --benchmark_out_format=json; then
-      kernel_files+=("$json")
+      --benchmark_out="$json" --benchmark_out_format=json "$@"; then
+      json_files+=("$json")
     else
-      echo "FAILED: kernel benchmarks at $threads threads (see $out_dir/kernels-t$threads.log)"
+      echo "FAILED: $what at $threads threads (see $out_dir/$prefix-t$threads.log)"
       failures=$((failures + 1))
     fi
   done
+}
+
+if [[ ${RKTSPH_BENCH_KERNELS:-1} != 0 ]]; then
+  echo
+  echo "== kernel benchmarks (medians of $repetitions; the table build is serial, run once)"
+  run_per_thread_count kernels "kernel benchmarks" '^BM_(ApplyOperator|NodeToStressPointTable)/' \
+    --benchmark_min_time=0.1
+  kernel_files=("${json_files[@]}")
   json=$out_dir/table-build.json
   if run_bench 1 "$out_dir/table-build.log" --benchmark_filter='^BM_(BuildOperatorTables|StepOperatorRebuild)/' \
     --benchmark_out="$json" --benchmark_out_format=json; then
@@ -221,20 +232,9 @@ if [[ ${RKTSPH_BENCH_MOVING:-1} != 0 ]]; then
   echo
   echo "== moving configuration (large-deformation model: BAR-WAVE-2D S/M/L and the collapsing"
   echo "   low-cohesion block; every step rebuilds its tables; medians of $repetitions)"
-  moving_files=()
-  for threads in $threads_list; do
-    json=$out_dir/moving-t$threads.json
-    if run_bench "$threads" "$out_dir/moving-t$threads.log" \
-      --benchmark_filter='^BM_(MovingBarWaveStep|LowCohesionSlopeStep)/' \
-      --benchmark_repetitions="$repetitions" --benchmark_report_aggregates_only=true \
-      --benchmark_out="$json" --benchmark_out_format=json; then
-      moving_files+=("$json")
-    else
-      echo "FAILED: moving-configuration benchmarks at $threads threads (see $out_dir/moving-t$threads.log)"
-      failures=$((failures + 1))
-    fi
-  done
-  if [[ ${#moving_files[@]} -gt 0 ]] && ! python3 - "${moving_files[@]}" <<'PYTHON'
+  run_per_thread_count moving "moving-configuration benchmarks" \
+    '^BM_(MovingBarWaveStep|LowCohesionSlopeStep)/'
+  if [[ ${#json_files[@]} -gt 0 ]] && ! python3 - "${json_files[@]}" <<'PYTHON'
 import json
 import sys
 

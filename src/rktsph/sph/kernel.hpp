@@ -47,10 +47,15 @@ class Kernel {
     double distance_squared = 0.0;
     for (int a = 0; a < dimension_; ++a)
       distance_squared += offset[a] * offset[a];
+    return gradient(offset, std::sqrt(distance_squared), smoothing_length);
+  }
+
+  /// The same with |offset| = `distance` already known (one square root for W and its gradient).
+  std::array<double, 3> gradient(const std::array<double, 3>& offset, double distance,
+                                 double smoothing_length) const {
     std::array<double, 3> result{0.0, 0.0, 0.0};
     // At r = 0 the direction is undefined, but dW/dr -> 0 there, so the limit is the zero vector.
-    if (distance_squared == 0.0) return result;
-    const double distance = std::sqrt(distance_squared);
+    if (distance == 0.0) return result;
     const double scale = derivative(distance, smoothing_length) / distance;
     for (int a = 0; a < dimension_; ++a)
       result[a] = scale * offset[a];

@@ -132,15 +132,9 @@ bool compute_row(int dimension, const Vector& target, std::span<const StencilSou
       offset[a] = target[a] - s.position[a];
       r2 += offset[a] * offset[a];
     }
-    // One square root for both (Kernel::gradient's own expression, so the weights are unchanged).
     const double distance = std::sqrt(r2);
     const double w = kernel.value(distance, h) * s.volume;
-    Vector g{};
-    if (r2 > 0.0) {
-      const double radial = kernel.derivative(distance, h) / distance;
-      for (int a = 0; a < d; ++a)
-        g[a] = radial * offset[a];
-    }
+    const Vector g = kernel.gradient(offset, distance, h);
     slots.source[k] = s.column;
     slots.reflection[k] = s.reflection;
     interpolation[k] = w;

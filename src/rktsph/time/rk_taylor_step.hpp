@@ -21,6 +21,7 @@
 
 #include "rktsph/boundary/boundary_conditions.hpp"
 #include "rktsph/core/checkpoint.hpp"
+#include "rktsph/core/step_time_split.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/physics/configuration_motion.hpp"
 #include "rktsph/physics/physics_model.hpp"
@@ -118,13 +119,13 @@ class RkTaylorStep {
   StepOperatorBuilder builder_;
   OperatorPolicy policy_;
   StepOperators operators_;
-  std::optional<ConfigurationMotion> motion_;
-  // The time split (docs/theory.md §9.5): every advance, its rebuilds, its moves [s].
+  std::optional<ConfigurationMotion> motion_;  // with the policy CurrentConfiguration
+  // The time split (docs/theory.md §9.5): every advance, its rebuilds, the rebuilds' cell lists,
+  // its moves [s].
   double advance_seconds_ = 0.0;
   double rebuild_seconds_ = 0.0;
+  double cell_list_seconds_ = 0.0;
   double surface_seconds_ = 0.0;
-  double cell_list_seconds_at_start_ =
-      0.0;  // the constructor's build  // with the policy CurrentConfiguration
   // Where dv_a/dx_c sits (a * d + c): in a gradient of every field, in one of the velocity only.
   std::vector<int> velocity_gradient_of_fields_, velocity_gradient_of_velocity_;
   HourglassFields hourglass_fields_ = HourglassFields::Velocity;

@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "rktsph/core/error.hpp"
+#include "rktsph/core/step_time_split.hpp"
 #include "rktsph/time/step_operators.hpp"
 
 namespace rktsph {
@@ -113,7 +114,7 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
   auto clock = std::chrono::steady_clock::now();
   node_cells_.rebuild(nodes, support);
   point_cells_.rebuild(points, support);
-  time_split_.cell_lists += lap(clock);
+  cell_list_seconds_ += lap(clock);
   const CellList& node_cells = node_cells_;
   const CellList& point_cells = point_cells_;
 
@@ -189,7 +190,6 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
         fmt::format("the boundary node at {} has a degenerate collocated stencil",
                     describe_point(nodes, static_cast<std::size_t>(
                                               ops.boundary_nodes[report.degenerate_rows[0]]))));
-  time_split_.operator_tables += lap(clock);
 }
 
 void StepOperatorBuilder::degenerate(std::size_t rows, StepOperators& operators,
@@ -207,7 +207,7 @@ void StepOperatorBuilder::build_filter_tables(const Configuration& configuration
   auto clock = std::chrono::steady_clock::now();
   node_cells_.rebuild(configuration.sph_nodes, filter_support);
   point_cells_.rebuild(configuration.stress_points, filter_support);
-  time_split_.cell_lists += lap(clock);
+  cell_list_seconds_ += lap(clock);
   const CellList& filter_node_cells = node_cells_;
   const CellList& filter_point_cells = point_cells_;
   // The round trip only interpolates: the gradient weights are computed in scratch, not kept.
@@ -220,7 +220,6 @@ void StepOperatorBuilder::build_filter_tables(const Configuration& configuration
     share_row_weights(ops.filter_to_points, share_workspace_);
     share_row_weights(ops.filter_to_nodes, share_workspace_);
   }
-  time_split_.operator_tables += lap(clock);
 }
 
 }  // namespace rktsph

@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "rktsph/case/case_description.hpp"
-#include "rktsph/core/step_time_split.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/physics/state.hpp"
 #include "rktsph/sph/adjoint_operator.hpp"
@@ -95,8 +94,8 @@ class StepOperatorBuilder {
   /// moving configuration no two rows are alike, so the sharing pass would cost a quarter of the
   /// rebuild and save nothing (docs/theory.md §9.5).
   void keep_filter_weights_per_row() { share_filter_weights_ = false; }
-  /// The time spent on cell lists and on tables by every build so far.
-  const StepTimeSplit& time_split() const { return time_split_; }
+  /// The wall time every build so far spent on the neighbour search's cell lists [s].
+  double cell_list_seconds() const { return cell_list_seconds_; }
 
  private:
   const NodeSets& reference_;
@@ -110,7 +109,7 @@ class StepOperatorBuilder {
   bool classified_ = false;
   bool fall_back_ = false;
   bool share_filter_weights_ = true;
-  StepTimeSplit time_split_;  // only cell_lists and operator_tables
+  double cell_list_seconds_ = 0.0;
   /// Counts `rows` degenerate rows, or throws `message` for the first when not falling back.
   void degenerate(std::size_t rows, StepOperators& operators, const std::string& message) const;
   std::vector<std::int32_t> boundary_nodes_, node_to_boundary_row_, incomplete_nodes_;
