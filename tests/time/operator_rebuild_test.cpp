@@ -152,6 +152,47 @@ TEST(OperatorRebuild, RebuildsOnMovedConfigurationsEqualFreshBuildsAndDoNotReall
 
 // The row-parallel table builders give the tables of append_row, row by row, on a lattice large
 // enough for the parallel loops (above kParallelThreshold rows).
+// On a moving configuration the filter's tables are rebuilt exactly when some node has moved
+// more than rebuild_distance dx from where they were last built (docs/theory.md §9.5): the test
+// keeps its own copy of those positions and checks every step's decision against it. With the
+// distance 0 they are rebuilt before every step.
+TEST(OperatorRebuild, MovingFilterIsRebuiltOnceANodeHasMovedTheRebuildDistance) {
+  const double distance = 2e-5;  // over dx: the ramped load moves the cut by a few 1e-4 dx
+  Simulation moving(read_case_text(
+      loaded_cut("{hourglass: {rebuild_distance: " + std::to_string(distance) + "}}"), "cut.yaml",
+      {{"model", "dry_large_deformation"}}));
+  const double limit = distance * moving.nodes().spacing;
+  PointCloud built_at = moving.state().configuration.sph_nodes;
+  int rebuilt = 0, kept = 0;
+  for (int s = 0; s < 60; ++s) {
+    const PointCloud& now = moving.state().configuration.sph_nodes;
+    double largest = 0.0;
+    for (std::size_t i = 0; i < now.size(); ++i)
+      largest = std::max(largest, std::hypot(now.position[0][i] - built_at.position[0][i],
+                                             now.position[1][i] - built_at.position[1][i]));
+    const PointCloud before = now;
+    const long builds = moving.step().filter_builds();
+    moving.step().advance(moving.state(), moving.time_step());
+    if (moving.step().filter_builds() > builds) {
+      EXPECT_GT(largest, limit) << "step " << s;
+      built_at = before;
+      ++rebuilt;
+    } else {
+      EXPECT_LE(largest, limit) << "step " << s;
+      ++kept;
+    }
+  }
+  EXPECT_GT(rebuilt, 0);
+  EXPECT_GT(kept, 0);
+
+  Simulation every_step(read_case_text(loaded_cut("{hourglass: {rebuild_distance: 0}}"), "cut.yaml",
+                                       {{"model", "dry_large_deformation"}}));
+  const long at_start = every_step.step().filter_builds();
+  for (int s = 0; s < 5; ++s)
+    every_step.step().advance(every_step.state(), every_step.time_step());
+  EXPECT_EQ(every_step.step().filter_builds() - at_start, 5);
+}
+
 TEST(OperatorRebuild, ParallelCrossOperatorEqualsRowByRowAppend) {
   test::ElasticBlock block;  // the cut of loaded_cut, finer, with its mirror side
   block.spacing = 0.1;

@@ -153,6 +153,7 @@ void Simulation::save_checkpoint(CheckpointOut& out) const {
   for (const FieldArray* array : state().arrays())
     out.put_fields(*array);
   save_configuration(out, state().configuration);
+  assembly_.step().save_checkpoint(out);
   if (assembly_.projection()) assembly_.projection()->save_checkpoint(out);
 }
 
@@ -164,6 +165,7 @@ void Simulation::restore_checkpoint(CheckpointIn& in) {
   for (FieldArray* array : state().arrays())
     in.get_fields_into(*array);
   restore_configuration(in, state().configuration);
+  assembly_.step().restore_checkpoint(in);
   if (assembly_.projection()) assembly_.projection()->restore_checkpoint(in);
   resumed_ = true;
 }

@@ -78,6 +78,13 @@ class RkTaylorStep {
   void set_moving_surface(BoundaryConditions* conditions) { moving_surface_ = conditions; }
   /// Where the wall time of every advance so far went (docs/theory.md §9.5).
   StepTimeSplit time_split() const;
+  /// How many times the filter's tables were built on a moving configuration (docs/theory.md
+  /// §9.5), the build at the start included.
+  long filter_builds() const { return filter_builds_; }
+  /// The configuration of the filter's last build and the count of builds (moving configurations
+  /// with the filter on; nothing otherwise): a restart rebuilds the same tables from it.
+  void save_checkpoint(CheckpointOut& out) const;
+  void restore_checkpoint(CheckpointIn& in);
   /// The motion of the configuration (policy CurrentConfiguration), or null.
   const ConfigurationMotion* motion() const { return motion_ ? &*motion_ : nullptr; }
   /// Applies the hourglass filter of step 3 alone (docs/theory.md eq. 3.1); no-op when it is off.
@@ -85,6 +92,10 @@ class RkTaylorStep {
 
  private:
   void bind_operators(const Configuration& configuration);
+  /// True when a node has moved hourglass_rebuild_distance dx since the filter's last build.
+  bool filter_out_of_date(const Configuration& configuration) const;
+  /// Builds the filter's tables on `configuration` and keeps it as their configuration.
+  void build_filter(const Configuration& configuration);
   /// u += dt/2 v, one half of the trapezoidal displacement update.
   void add_half_step_displacement(State& state, double dt) const;
   void step_stress_points(const State& state, double dt);
@@ -130,6 +141,11 @@ class RkTaylorStep {
   std::vector<int> velocity_gradient_of_fields_, velocity_gradient_of_velocity_;
   HourglassFields hourglass_fields_ = HourglassFields::Velocity;
   bool filter_active_ = false;
+  // Moving configurations: where the filter's tables were last built, their degenerate rows, and
+  // the count of builds (docs/theory.md §9.5).
+  Configuration filter_configuration_;
+  std::size_t filter_fallback_rows_ = 0;
+  long filter_builds_ = 0;
   double viscosity_length_ = 0.0;  // alpha * dx of the artificial viscosity (0 = off)
   const BoundaryConditions& conditions_;
   StepProjection* projection_ = nullptr;

@@ -28,6 +28,9 @@ struct StepOptions {
   bool hourglass_filter = true;  // ignored in 1D, where midpoint stress points have no such mode
   double hourglass_kappa = 0.1;
   double hourglass_h_over_dx = 1.3;
+  /// On a moving configuration the filter's tables are rebuilt once a node has moved this fraction
+  /// of dx since their last build (docs/theory.md §9.5); 0: before every step.
+  double hourglass_rebuild_distance = 0.1;
   std::optional<HourglassFields> hourglass_fields;  // unset: Velocity on compact stencils, else All
   StressUpdate stress_update = StressUpdate::HalfStep;
   HourglassStrength hourglass_stiffness;    // epsilon of docs/theory.md eq. 3.3; 0 = off

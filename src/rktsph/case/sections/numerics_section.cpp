@@ -31,6 +31,10 @@ const KeyTable<NumericsSpec>& hourglass_keys() {
       number_key<N>("kappa", &N::hourglass_kappa, kUnitInterval, "–", "Filter strength."),
       number_key<N>("h_over_dx", &N::hourglass_h_over_dx, kSmoothingRatioRange, "–",
                     "Smoothing length of the filter over dx."),
+      number_key<N>("rebuild_distance", &N::hourglass_rebuild_distance, kUnitInterval, "–",
+                    "On a moving configuration (large deformation), the filter's tables are "
+                    "rebuilt once a node has moved this fraction of dx since their last build "
+                    "(docs/theory.md §9.5); 0: before every step."),
       optional_number_key<N>(
           "stiffness", &N::hourglass_stiffness, kUnitInterval, "–",
           fmt::format("with stress_update: mean_velocity {} in cells of elastic materials, {} in "
