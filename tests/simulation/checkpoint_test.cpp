@@ -181,27 +181,27 @@ TEST(CheckpointSimulation, RestoredSofteningRunWithStrainStiffnessTakesTheSameSt
   expect_restored_simulation_continues_identically(description);
 }
 
-// The collapsing block of ld-slope-low-cohesion on a coarse lattice, with the filter's tables
-// rebuilt after a few steps' motion instead of every step (docs/theory.md §9.5).
+// The collapsing block of ld-slope-low-cohesion on a coarse lattice, with the stencils searched and
+// the filter rebuilt after a few steps' motion instead of every step (docs/theory.md §9.5).
 CaseDescription collapsing_block() {
   return read_case_file(
       std::string(RKTSPH_TEST_DATA_DIR) + "/../../cases/ld-slope-low-cohesion/case.yaml",
       {{"geometry.spacing", "2.0"},
        {"time.end", "1.0"},
-       {"numerics.hourglass.rebuild_distance", "0.2"}});
+       {"numerics.neighbour_search_distance", "0.2"}});
 }
 
-TEST(CheckpointSimulation, RestoredLargeDeformationRunRebuildsItsFilterWhereTheRunDid) {
+TEST(CheckpointSimulation, RestoredLargeDeformationRunSearchesItsStencilsWhereTheRunDid) {
   const CaseDescription description = collapsing_block();
-  // The checkpoint must fall between two builds of the filter, and builds must follow it, or the
-  // restart would not have to rebuild the tables of an older configuration.
+  // The checkpoint must fall between two searches, and searches must follow it, or the restart
+  // would not have to search again from an older configuration.
   Simulation probe(description);
   advance(probe, 40);
-  const long builds_at_checkpoint = probe.step().filter_builds();
+  const long searches_at_checkpoint = probe.step().neighbour_searches();
   advance(probe, 40);
-  const long builds_after = probe.step().filter_builds() - builds_at_checkpoint;
-  ASSERT_GT(builds_after, 1);
-  ASSERT_LT(builds_after, 40);
+  const long searches_after = probe.step().neighbour_searches() - searches_at_checkpoint;
+  ASSERT_GT(searches_after, 1);
+  ASSERT_LT(searches_after, 40);
   expect_restored_simulation_continues_identically(description);
 }
 

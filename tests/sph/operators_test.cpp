@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <tuple>
 
 #include "../support/lattices.hpp"
 #include "rktsph/geometry/node_sets.hpp"
@@ -374,6 +376,57 @@ TEST(Degeneracy, EmptyAndSingleSourceStencilsAreReportedWithFiniteWeights) {
       EXPECT_TRUE(std::isfinite(w));
   for (double w : table.interpolation)
     EXPECT_TRUE(std::isfinite(w));
+}
+
+// A neighbour list with a skin (docs/theory.md §9.5): candidates found within the support plus a
+// skin on one configuration, picked at the support on another where every point has moved less
+// than half the skin, give exactly the stencil of a fresh search in the cell lists there (the
+// same sources, images, positions and volumes; the order may differ), on a lattice with mirror
+// planes on two axes (so with images of images) and with the target left out of its own stencil.
+TEST(StencilCandidates, PickTheStencilOfAFreshSearchWhilePointsMoveLessThanHalfTheSkin) {
+  const NodeSets lattice = rectangle_lattice(3.0, 2.0, 0.25);
+  OperatorOptions options = options_for(2, 1.3 * 0.25, 1);
+  options.mirrors = {MirrorPlane{0, 0.0}, MirrorPlane{1, 0.0}};
+  const double support = options.kernel.support_radius(options.smoothing_length);
+  const double skin = 0.1;
+  const PointCloud searched = lattice.sph_nodes;
+  const CellList searched_cells(searched, support + skin);
+  std::vector<std::vector<StencilCandidate>> candidates(searched.size());
+  for (std::size_t i = 0; i < searched.size(); ++i)
+    gather_candidates(searched.point(i), searched_cells, options, static_cast<std::int32_t>(i),
+                      support + skin, candidates[i]);
+
+  // Every point moved by less than skin / 2, in a random direction; the points on a mirror plane
+  // stay on it, as the roller that makes the plane holds them.
+  PointCloud moved = searched;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (std::size_t i = 0; i < moved.size(); ++i)
+    for (std::size_t a = 0; a < 2; ++a)
+      if (moved.position[a][i] > 1e-12) moved.position[a][i] += 0.49 * skin * unit(random) / 1.5;
+  const CellList fresh_cells(moved, support);
+  const auto key = [](const StencilSource& s) {
+    return std::make_tuple(s.column, s.reflection, s.position[0], s.position[1], s.volume);
+  };
+  std::size_t compared = 0, with_images = 0;
+  std::vector<StencilSource> picked, fresh;
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    gather_stencil(moved.point(i), moved, candidates[i], options, picked);
+    gather_stencil(moved.point(i), fresh_cells, options, static_cast<std::int32_t>(i), fresh);
+    std::vector<decltype(key(picked[0]))> a, b;
+    for (const StencilSource& s : picked)
+      a.push_back(key(s));
+    for (const StencilSource& s : fresh)
+      b.push_back(key(s));
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    EXPECT_EQ(a, b) << "point " << i;
+    compared += b.size();
+    with_images += std::count_if(fresh.begin(), fresh.end(),
+                                 [](const StencilSource& s) { return s.reflection == 3; }) > 0;
+  }
+  EXPECT_GT(compared, 10 * moved.size());
+  EXPECT_GT(with_images, 0u) << "some stencils must hold images across both planes";
 }
 
 }  // namespace

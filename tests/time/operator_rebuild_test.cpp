@@ -152,15 +152,15 @@ TEST(OperatorRebuild, RebuildsOnMovedConfigurationsEqualFreshBuildsAndDoNotReall
 
 // The row-parallel table builders give the tables of append_row, row by row, on a lattice large
 // enough for the parallel loops (above kParallelThreshold rows).
-// On a moving configuration the filter's tables are rebuilt exactly when some node has moved
-// more than rebuild_distance dx from where they were last built (docs/theory.md §9.5): the test
-// keeps its own copy of those positions and checks every step's decision against it. With the
-// distance 0 they are rebuilt before every step.
-TEST(OperatorRebuild, MovingFilterIsRebuiltOnceANodeHasMovedTheRebuildDistance) {
+// On a moving configuration the stencils are searched again (and the filter rebuilt) exactly when
+// some node has moved more than neighbour_search_distance dx from where it was at the last search
+// (docs/theory.md §9.5): the test keeps its own copy of those positions and checks every step's
+// decision against it. With the distance 0 they are searched before every step.
+TEST(OperatorRebuild, MovingStencilsAreSearchedAgainOnceANodeHasMovedTheSearchDistance) {
   const double distance = 2e-5;  // over dx: the ramped load moves the cut by a few 1e-4 dx
-  Simulation moving(read_case_text(
-      loaded_cut("{hourglass: {rebuild_distance: " + std::to_string(distance) + "}}"), "cut.yaml",
-      {{"model", "dry_large_deformation"}}));
+  Simulation moving(
+      read_case_text(loaded_cut("{neighbour_search_distance: " + std::to_string(distance) + "}"),
+                     "cut.yaml", {{"model", "dry_large_deformation"}}));
   const double limit = distance * moving.nodes().spacing;
   PointCloud built_at = moving.state().configuration.sph_nodes;
   int rebuilt = 0, kept = 0;
@@ -171,9 +171,9 @@ TEST(OperatorRebuild, MovingFilterIsRebuiltOnceANodeHasMovedTheRebuildDistance) 
       largest = std::max(largest, std::hypot(now.position[0][i] - built_at.position[0][i],
                                              now.position[1][i] - built_at.position[1][i]));
     const PointCloud before = now;
-    const long builds = moving.step().filter_builds();
+    const long builds = moving.step().neighbour_searches();
     moving.step().advance(moving.state(), moving.time_step());
-    if (moving.step().filter_builds() > builds) {
+    if (moving.step().neighbour_searches() > builds) {
       EXPECT_GT(largest, limit) << "step " << s;
       built_at = before;
       ++rebuilt;
@@ -185,12 +185,12 @@ TEST(OperatorRebuild, MovingFilterIsRebuiltOnceANodeHasMovedTheRebuildDistance) 
   EXPECT_GT(rebuilt, 0);
   EXPECT_GT(kept, 0);
 
-  Simulation every_step(read_case_text(loaded_cut("{hourglass: {rebuild_distance: 0}}"), "cut.yaml",
+  Simulation every_step(read_case_text(loaded_cut("{neighbour_search_distance: 0}"), "cut.yaml",
                                        {{"model", "dry_large_deformation"}}));
-  const long at_start = every_step.step().filter_builds();
+  const long at_start = every_step.step().neighbour_searches();
   for (int s = 0; s < 5; ++s)
     every_step.step().advance(every_step.state(), every_step.time_step());
-  EXPECT_EQ(every_step.step().filter_builds() - at_start, 5);
+  EXPECT_EQ(every_step.step().neighbour_searches() - at_start, 5);
 }
 
 TEST(OperatorRebuild, ParallelCrossOperatorEqualsRowByRowAppend) {
@@ -246,14 +246,16 @@ TEST(OperatorRebuild, ClassifiesBoundaryNodesFromTheCellsAroundThem) {
 }
 
 // The time split of docs/theory.md §9.5: a fixed configuration builds its tables once, before the
-// run, so its steps spend nothing on cell lists, tables or moving; a moving one spends on each.
+// run, so its steps spend nothing on cell lists, tables or moving; a moving one spends on each
+// (here searching its stencils before every step, as it does after enough motion).
 // The parts are pieces of the steps, so together they cannot exceed the loop's wall time.
 TEST(StepTimeSplit, OnlyAMovingConfigurationRebuildsAndTheSplitFitsInTheSteps) {
   for (const bool moving : {false, true}) {
     const std::vector<CaseOverride> overrides =
         moving ? std::vector<CaseOverride>{{"model", "dry_large_deformation"}}
                : std::vector<CaseOverride>{};
-    Simulation simulation(read_case_text(loaded_cut("{}"), "cut.yaml", overrides));
+    Simulation simulation(
+        read_case_text(loaded_cut("{neighbour_search_distance: 0}"), "cut.yaml", overrides));
     const auto start = std::chrono::steady_clock::now();
     for (int s = 0; s < 10; ++s)
       simulation.step().advance(simulation.state(), simulation.time_step());

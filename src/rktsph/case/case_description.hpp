@@ -181,7 +181,7 @@ struct NumericsSpec {
   bool hourglass_filter = true;  ///< docs/theory.md §3.3, default on in 2D, ignored in 1D
   double hourglass_kappa = 0.1;
   double hourglass_h_over_dx = 1.3;
-  double hourglass_rebuild_distance = 0.1;  ///< over dx, moving configurations (theory §9.5)
+  double neighbour_search_distance = 0.1;  ///< over dx, moving configurations (theory §9.5)
   std::optional<HourglassFields> hourglass_fields;  ///< unset: from the stencil width
   /// unset: MeanVelocity in 2D, HalfStep in 1D (docs/theory.md §2.2)
   std::optional<StressUpdate> stress_update;

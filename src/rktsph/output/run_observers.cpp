@@ -84,7 +84,7 @@ JsonValue moving_configuration_summary(const Simulation& simulation,
   summary.set("cells", std::move(cells));
   summary.set("reseeded_stress_points", 0);
   summary.set("fallback_gradient_rows", simulation.step().operators().fallback_rows);
-  summary.set("filter_builds", simulation.step().filter_builds());
+  summary.set("neighbour_searches", simulation.step().neighbour_searches());
   summary.set("detected_free_surface", std::move(surface));
   JsonValue walls = JsonValue::object();
   walls.set("nodes_in_contact", simulation.boundary_conditions().nodes_in_contact());

@@ -290,7 +290,7 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
   options.hourglass_filter = numerics.hourglass_filter;
   options.hourglass_kappa = numerics.hourglass_kappa;
   options.hourglass_h_over_dx = numerics.hourglass_h_over_dx;
-  options.hourglass_rebuild_distance = numerics.hourglass_rebuild_distance;
+  options.neighbour_search_distance = numerics.neighbour_search_distance;
   options.hourglass_fields = numerics.hourglass_fields;
   options.stress_update = numerics.stress_update.value_or(default_stress_update(nodes_.dimension));
   options.hourglass_stiffness =

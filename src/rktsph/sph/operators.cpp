@@ -77,37 +77,118 @@ void check_mirror_count(const OperatorOptions& options) {
     throw std::invalid_argument("at most 8 mirror planes are supported");
 }
 
-void gather_stencil(const Vector& target, const CellList& cells, const OperatorOptions& options,
-                    std::int32_t exclude, std::vector<StencilSource>& stencil) {
-  stencil.clear();
-  const double support = options.kernel.support_radius(options.smoothing_length);
+namespace {
+
+/// Whether the target is within `radius` of every plane of `subset` (a set of planes contributes
+/// images only then), and the subset's reflection bits (one per axis reflected an odd number of
+/// times).
+bool near_every_plane(const Vector& target, const std::vector<MirrorPlane>& mirrors,
+                      unsigned subset, double radius, std::uint8_t& reflection) {
+  bool near_all = true;
+  reflection = 0;
+  for (std::size_t m = 0; m < mirrors.size(); ++m)
+    if (subset & (1u << m)) {
+      near_all = near_all && std::abs(target[mirrors[m].axis] - mirrors[m].coordinate) < radius;
+      reflection ^= static_cast<std::uint8_t>(1u << mirrors[m].axis);
+    }
+  return near_all;
+}
+
+/// True if source x lies on a plane of `subset`: its image there coincides with a point already
+/// counted.
+bool on_a_plane(const Vector& x, const std::vector<MirrorPlane>& mirrors, unsigned subset,
+                double tolerance) {
+  for (std::size_t m = 0; m < mirrors.size(); ++m)
+    if ((subset & (1u << m)) && std::abs(x[mirrors[m].axis] - mirrors[m].coordinate) <= tolerance)
+      return true;
+  return false;
+}
+
+/// Calls visit(j, subset, reflection, x_j) for every source j of `cells` within `radius` of
+/// `target` or of its mirror images: the subsets of planes in turn, the sources of each in cell
+/// order.
+template <class Visit>
+void for_each_stencil_source(const Vector& target, const CellList& cells,
+                             const OperatorOptions& options, std::int32_t exclude, double radius,
+                             Visit&& visit) {
   const double on_plane_tolerance = 1e-8 * options.smoothing_length;
   const PointCloud& sources = cells.points();
   const auto& mirrors = options.mirrors;
-  check_mirror_count(options);
-
   for (unsigned subset = 0; subset < (1u << mirrors.size()); ++subset) {
-    // A set of planes contributes images only if the target is within the support of each.
-    bool near_all = true;
     std::uint8_t reflection = 0;
-    for (std::size_t m = 0; m < mirrors.size(); ++m)
-      if (subset & (1u << m)) {
-        near_all = near_all && std::abs(target[mirrors[m].axis] - mirrors[m].coordinate) < support;
-        reflection ^= static_cast<std::uint8_t>(1u << mirrors[m].axis);
-      }
-    if (!near_all) continue;
+    if (!near_every_plane(target, mirrors, subset, radius, reflection)) continue;
     // |target - R(x_j)| = |R(target) - x_j|: search around the reflected target.
     const Vector query = reflect(target, mirrors, subset);
-    cells.for_each_within(query, support, [&](std::int32_t j, const Vector&, double) {
+    cells.for_each_within(query, radius, [&](std::int32_t j, const Vector&, double) {
       if (subset == 0 && j == exclude) return;
       const Vector x = sources.point(static_cast<std::size_t>(j));
-      for (std::size_t m = 0; m < mirrors.size(); ++m)
-        if ((subset & (1u << m)) &&
-            std::abs(x[mirrors[m].axis] - mirrors[m].coordinate) <= on_plane_tolerance)
-          return;  // its image coincides with a point already counted
-      stencil.push_back(StencilSource{j, reflection, reflect(x, mirrors, subset),
-                                      sources.volume[static_cast<std::size_t>(j)]});
+      if (on_a_plane(x, mirrors, subset, on_plane_tolerance)) return;
+      visit(j, subset, reflection, x);
     });
+  }
+}
+
+}  // namespace
+
+void gather_stencil(const Vector& target, const CellList& cells, const OperatorOptions& options,
+                    std::int32_t exclude, std::vector<StencilSource>& stencil) {
+  stencil.clear();
+  check_mirror_count(options);
+  const double support = options.kernel.support_radius(options.smoothing_length);
+  const PointCloud& sources = cells.points();
+  for_each_stencil_source(
+      target, cells, options, exclude, support,
+      [&](std::int32_t j, unsigned subset, std::uint8_t reflection, const Vector& x) {
+        stencil.push_back(StencilSource{j, reflection, reflect(x, options.mirrors, subset),
+                                        sources.volume[static_cast<std::size_t>(j)]});
+      });
+}
+
+void gather_candidates(const Vector& target, const CellList& cells, const OperatorOptions& options,
+                       std::int32_t exclude, double radius,
+                       std::vector<StencilCandidate>& candidates) {
+  candidates.clear();
+  check_mirror_count(options);
+  for_each_stencil_source(
+      target, cells, options, exclude, radius,
+      [&](std::int32_t j, unsigned subset, std::uint8_t reflection, const Vector&) {
+        candidates.push_back(StencilCandidate{j, static_cast<std::uint8_t>(subset), reflection});
+      });
+}
+
+void gather_stencil(const Vector& target, const PointCloud& sources,
+                    std::span<const StencilCandidate> candidates, const OperatorOptions& options,
+                    std::vector<StencilSource>& stencil) {
+  // The tests of the search in the cell lists at the support, with the same arithmetic, on the
+  // candidates in the order that search visited them.
+  stencil.clear();
+  const double support = options.kernel.support_radius(options.smoothing_length);
+  const double support_squared = support * support;
+  const double on_plane_tolerance = 1e-8 * options.smoothing_length;
+  const auto& mirrors = options.mirrors;
+  const int d = sources.dimension;
+  unsigned subset = ~0u;
+  bool near_all = false;
+  Vector query{};
+  for (const StencilCandidate& candidate : candidates) {
+    if (candidate.subset != subset) {
+      subset = candidate.subset;
+      std::uint8_t reflection = 0;
+      near_all = near_every_plane(target, mirrors, subset, support, reflection);
+      query = reflect(target, mirrors, subset);
+    }
+    if (!near_all) continue;
+    const Vector x = sources.point(static_cast<std::size_t>(candidate.column));
+    double distance_squared = 0.0;
+    for (int a = 0; a < d; ++a) {
+      const double offset = query[a] - x[a];
+      distance_squared += offset * offset;
+    }
+    if (!(distance_squared < support_squared)) continue;
+    if (on_a_plane(x, mirrors, subset, on_plane_tolerance)) continue;
+    stencil.push_back(StencilSource{candidate.column, candidate.reflection,
+                                    reflect(x, mirrors, subset),
+                                    sources.volume[static_cast<std::size_t>(candidate.column)]});
   }
 }
 

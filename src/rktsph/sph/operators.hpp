@@ -106,6 +106,27 @@ void gather_stencil(const std::array<double, 3>& target, const CellList& cells,
                     const OperatorOptions& options, std::int32_t exclude,
                     std::vector<StencilSource>& stencil);
 
+/// A source found by gather_candidates: its column, the subset of mirror planes whose image of it
+/// was found (bit m: plane m), and that image's reflection bits.
+struct StencilCandidate {
+  std::int32_t column = 0;
+  std::uint8_t subset = 0;
+  std::uint8_t reflection = 0;
+};
+
+/// A neighbour list with a skin (docs/theory.md §9.5): the sources, and images, that
+/// gather_stencil would find within `radius` (> the support) instead of the support, in its order.
+void gather_candidates(const std::array<double, 3>& target, const CellList& cells,
+                       const OperatorOptions& options, std::int32_t exclude, double radius,
+                       std::vector<StencilCandidate>& candidates);
+/// The stencil gather_stencil would gather at `target` from the sources at their positions in
+/// `sources` now, picked from `candidates` found when they were elsewhere: the same tests with the
+/// same arithmetic, in the candidates' order. It is the stencil of a search in the cell lists as
+/// long as no source or target has moved more than half the skin since the candidates were found.
+void gather_stencil(const std::array<double, 3>& target, const PointCloud& sources,
+                    std::span<const StencilCandidate> candidates, const OperatorOptions& options,
+                    std::vector<StencilSource>& stencil);
+
 /// Appends the weights of one row computed from `stencil`; for GradientReference::Self the row
 /// also gets an entry for `self_column` that makes the gradient of a constant vanish.
 /// Returns false if the stencil is degenerate; the row then holds the uncorrected SPH gradient

@@ -34,9 +34,11 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
     // of the case, thrown by the build above (docs/theory.md §9.5).
     builder_.fall_back_on_degenerate_stencils();
     builder_.keep_filter_weights_per_row();
-    // Again with a weight per row, as every later build makes them, so that a restart that
-    // rebuilds the filter from its configuration gets these tables bit for bit.
-    if (builder_.filter_active()) build_filter(configuration);
+    builder_.keep_stencil_candidates(2.0 * options.neighbour_search_distance * reference.spacing);
+    // Searched again with the skin, and the filter built with a weight per row, as every later
+    // search does, so that a restart searching from the configuration of the last search gets
+    // these stencils and tables bit for bit.
+    search_neighbours(configuration);
     motion_.emplace(reference);
     predicted_nodes_ = reference.sph_nodes;
   }
@@ -155,20 +157,23 @@ void RkTaylorStep::bind_operators(const Configuration& configuration) {
 
 void RkTaylorStep::rebuild_operators(const Configuration& configuration) {
   builder_.classify(configuration, operators_);
-  builder_.build_step_tables(configuration, operators_);  // counts their degenerate rows anew
-  if (filter_active_ && filter_out_of_date(configuration)) build_filter(configuration);
+  if (neighbours_out_of_date(configuration))
+    search_neighbours(configuration);
+  else
+    builder_.build_step_tables(configuration, operators_, false);  // new weights, same stencils
   operators_.fallback_rows += filter_fallback_rows_;
   bind_operators(configuration);
 }
 
-bool RkTaylorStep::filter_out_of_date(const Configuration& configuration) const {
-  // The filter passes fields linear in the x of its build exactly (docs/theory.md §3.3); kept
-  // while no node has moved more than a set fraction of dx from there, it passes fields linear in
-  // the current x to within that fraction (§9.5).
-  const double limit = options_.hourglass_rebuild_distance * nodes_.spacing;
+bool RkTaylorStep::neighbours_out_of_date(const Configuration& configuration) const {
+  // The stencils hold every source within the support plus twice this distance, and the filter
+  // passes fields linear in the x of its build exactly (docs/theory.md §3.3): both stay right, to
+  // within the motion since, while no node has moved this far from where it was at the last
+  // search (§9.5).
+  const double limit = options_.neighbour_search_distance * nodes_.spacing;
   const PointCloud& now = configuration.sph_nodes;
-  const PointCloud& then = filter_configuration_.sph_nodes;
-  if (limit <= 0.0 || then.size() != now.size()) return true;  // not yet built by this step
+  const PointCloud& then = search_configuration_.sph_nodes;
+  if (limit <= 0.0 || then.size() != now.size()) return true;  // not yet searched by this step
   const auto n = static_cast<std::int64_t>(now.size());
   const int d = model_.dimension();
   double largest = 0.0;
@@ -185,32 +190,33 @@ bool RkTaylorStep::filter_out_of_date(const Configuration& configuration) const 
   return largest > limit * limit;
 }
 
-void RkTaylorStep::build_filter(const Configuration& configuration) {
+void RkTaylorStep::search_neighbours(const Configuration& configuration) {
+  builder_.build_step_tables(configuration, operators_, true);
   const std::size_t before = operators_.fallback_rows;
-  builder_.build_filter_tables(configuration, operators_);
+  builder_.build_filter_tables(configuration, operators_);  // no-op with the filter off
   filter_fallback_rows_ = operators_.fallback_rows - before;
   operators_.fallback_rows = before;
-  if (&configuration != &filter_configuration_) filter_configuration_ = configuration;
-  ++filter_builds_;
+  if (&configuration != &search_configuration_) search_configuration_ = configuration;
+  ++neighbour_searches_;
 }
 
 void RkTaylorStep::save_checkpoint(CheckpointOut& out) const {
-  const bool kept = policy_ == OperatorPolicy::CurrentConfiguration && filter_active_;
-  out.put_u32(kept ? 1u : 0u);
-  if (!kept) return;
-  out.put_i64(filter_builds_);
-  save_configuration(out, filter_configuration_);
+  const bool moving = policy_ == OperatorPolicy::CurrentConfiguration;
+  out.put_u32(moving ? 1u : 0u);
+  if (!moving) return;
+  out.put_i64(neighbour_searches_);
+  save_configuration(out, search_configuration_);
 }
 
 void RkTaylorStep::restore_checkpoint(CheckpointIn& in) {
-  const bool kept = policy_ == OperatorPolicy::CurrentConfiguration && filter_active_;
-  if (in.get_u32() != (kept ? 1u : 0u))
-    in.fail("a filter configuration where this case has none, or none where it has one");
-  if (!kept) return;
-  const long builds = static_cast<long>(in.get_i64());
-  restore_configuration(in, filter_configuration_);
-  build_filter(filter_configuration_);  // the tables the run had at the checkpoint
-  filter_builds_ = builds;
+  const bool moving = policy_ == OperatorPolicy::CurrentConfiguration;
+  if (in.get_u32() != (moving ? 1u : 0u))
+    in.fail("a search configuration where this case has none, or none where it has one");
+  if (!moving) return;
+  const long searches = static_cast<long>(in.get_i64());
+  restore_configuration(in, search_configuration_);
+  search_neighbours(search_configuration_);  // the stencils and filter the run had
+  neighbour_searches_ = searches;
 }
 
 StepTimeSplit RkTaylorStep::time_split() const {

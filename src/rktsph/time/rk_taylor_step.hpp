@@ -78,11 +78,11 @@ class RkTaylorStep {
   void set_moving_surface(BoundaryConditions* conditions) { moving_surface_ = conditions; }
   /// Where the wall time of every advance so far went (docs/theory.md §9.5).
   StepTimeSplit time_split() const;
-  /// How many times the filter's tables were built on a moving configuration (docs/theory.md
-  /// §9.5), the build at the start included.
-  long filter_builds() const { return filter_builds_; }
-  /// The configuration of the filter's last build and the count of builds (moving configurations
-  /// with the filter on; nothing otherwise): a restart rebuilds the same tables from it.
+  /// How many times the stencils were searched and the filter's tables built on a moving
+  /// configuration (docs/theory.md §9.5), the search at the start included.
+  long neighbour_searches() const { return neighbour_searches_; }
+  /// The configuration of the last search and the count of searches (moving configurations;
+  /// nothing otherwise): a restart searches again from it and gets the same stencils and filter.
   void save_checkpoint(CheckpointOut& out) const;
   void restore_checkpoint(CheckpointIn& in);
   /// The motion of the configuration (policy CurrentConfiguration), or null.
@@ -92,10 +92,11 @@ class RkTaylorStep {
 
  private:
   void bind_operators(const Configuration& configuration);
-  /// True when a node has moved hourglass_rebuild_distance dx since the filter's last build.
-  bool filter_out_of_date(const Configuration& configuration) const;
-  /// Builds the filter's tables on `configuration` and keeps it as their configuration.
-  void build_filter(const Configuration& configuration);
+  /// True when a node has moved neighbour_search_distance dx since the last search.
+  bool neighbours_out_of_date(const Configuration& configuration) const;
+  /// Searches the stencils, builds the step's tables and the filter's on `configuration`, and
+  /// keeps it as the configuration of the last search.
+  void search_neighbours(const Configuration& configuration);
   /// u += dt/2 v, one half of the trapezoidal displacement update.
   void add_half_step_displacement(State& state, double dt) const;
   void step_stress_points(const State& state, double dt);
@@ -141,11 +142,11 @@ class RkTaylorStep {
   std::vector<int> velocity_gradient_of_fields_, velocity_gradient_of_velocity_;
   HourglassFields hourglass_fields_ = HourglassFields::Velocity;
   bool filter_active_ = false;
-  // Moving configurations: where the filter's tables were last built, their degenerate rows, and
-  // the count of builds (docs/theory.md §9.5).
-  Configuration filter_configuration_;
+  // Moving configurations: where the stencils were last searched and the filter built, the
+  // filter's degenerate rows, and the count of searches (docs/theory.md §9.5).
+  Configuration search_configuration_;
   std::size_t filter_fallback_rows_ = 0;
-  long filter_builds_ = 0;
+  long neighbour_searches_ = 0;
   double viscosity_length_ = 0.0;  // alpha * dx of the artificial viscosity (0 = off)
   const BoundaryConditions& conditions_;
   StepProjection* projection_ = nullptr;

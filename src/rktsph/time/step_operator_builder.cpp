@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "rktsph/core/error.hpp"
+#include "rktsph/core/parallel.hpp"
 #include "rktsph/core/step_time_split.hpp"
 #include "rktsph/time/step_operators.hpp"
 
@@ -104,22 +105,85 @@ void StepOperatorBuilder::classify(const Configuration& configuration, StepOpera
   classified_ = true;
 }
 
-void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
-                                            StepOperators& ops) {
+void StepOperatorBuilder::search_candidates(const PointCloud& nodes, const PointCloud& points,
+                                            const std::vector<std::int32_t>& boundary_nodes,
+                                            double radius) {
+  // The three kinds of rows and their sources, as build_step_tables gathers them (§9.5).
+  const OperatorOptions& options = operator_options_;
+  check_mirror_count(options);  // gather_candidates' one throw, before the parallel regions
+  // Each row into its own scratch buffer in parallel, then all rows into one contiguous table:
+  // the builds between searches stream through it instead of visiting a buffer per row.
+  std::vector<std::vector<StencilCandidate>>& rows = candidate_scratch_;
+  const auto search = [&](CandidateTable& table, std::size_t count, const PointCloud& targets,
+                          const CellList& cells, bool same_set,
+                          std::span<const std::int32_t> row_target) {
+    if (rows.size() < count) rows.resize(count);
+    const auto n = static_cast<std::int64_t>(count);
+#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
+    for (std::int64_t r = 0; r < n; ++r) {
+      const auto target = row_target.empty() ? static_cast<std::int32_t>(r)
+                                             : row_target[static_cast<std::size_t>(r)];
+      gather_candidates(targets.point(static_cast<std::size_t>(target)), cells, options,
+                        same_set ? target : -1, radius, rows[static_cast<std::size_t>(r)]);
+    }
+    table.start.resize(count + 1);
+    table.start[0] = 0;
+    for (std::size_t r = 0; r < count; ++r)
+      table.start[r + 1] = table.start[r] + static_cast<std::int64_t>(rows[r].size());
+    table.entries.resize(static_cast<std::size_t>(table.start[count]));
+#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
+    for (std::int64_t r = 0; r < n; ++r) {
+      const auto row = static_cast<std::size_t>(r);
+      std::copy(rows[row].begin(), rows[row].end(), table.entries.begin() + table.start[row]);
+    }
+  };
+  search(point_row_candidates_, points.size(), points, node_cells_, false, {});
+  search(node_row_candidates_, nodes.size(), nodes, point_cells_, false, {});
+  search(boundary_row_candidates_, boundary_nodes.size(), nodes, node_cells_, true, boundary_nodes);
+}
+
+void StepOperatorBuilder::build_step_tables(const Configuration& configuration, StepOperators& ops,
+                                            bool search) {
   const int d = reference_.dimension;
   const PointCloud& nodes = configuration.sph_nodes;
   const PointCloud& points = configuration.stress_points;
   const OperatorOptions& options = operator_options_;
   const double support = options.kernel.support_radius(options.smoothing_length);
-  auto clock = std::chrono::steady_clock::now();
-  node_cells_.rebuild(nodes, support);
-  point_cells_.rebuild(points, support);
-  cell_list_seconds_ += lap(clock);
+  // With a skin the stencils come from the candidates, searched again only when asked; without,
+  // from the cell lists every build.
+  const bool candidates = candidate_skin_ >= 0.0;
+  if (search || !candidates) {
+    auto clock = std::chrono::steady_clock::now();
+    const double radius = candidates ? support + candidate_skin_ : support;
+    node_cells_.rebuild(nodes, radius);
+    point_cells_.rebuild(points, radius);
+    if (candidates) search_candidates(nodes, points, ops.boundary_nodes, radius);
+    cell_list_seconds_ += lap(clock);
+  }
   const CellList& node_cells = node_cells_;
   const CellList& point_cells = point_cells_;
+  // Row r's stencil of sources `sources` around x, from the candidates or the cell lists.
+  const auto gather = [&](const CandidateTable& table, std::size_t r, const CellList& cells,
+                          const PointCloud& sources, std::int32_t exclude,
+                          const std::array<double, 3>& x, std::vector<StencilSource>& stencil) {
+    if (candidates)
+      gather_stencil(x, sources,
+                     std::span<const StencilCandidate>(table.entries.data() + table.start[r],
+                                                       table.entries.data() + table.start[r + 1]),
+                     options, stencil);
+    else
+      gather_stencil(x, cells, options, exclude, stencil);
+  };
 
   StencilReport report;
-  build_cross_operator(points, node_cells, options, ops.nodes_to_points, workspace_, &report);
+  build_rows(points.size(), d, options, TableWeights::InterpolationAndGradient, ops.nodes_to_points,
+             workspace_, [&](std::size_t p, std::vector<StencilSource>& stencil) {
+               const auto x = points.point(p);
+               gather(point_row_candidates_, p, node_cells, nodes, -1, x, stencil);
+               return RowTarget{x, GradientReference::ShepardCentroid, -1};
+             });
+  for (std::size_t p = 0; p < points.size(); ++p)
+    if (!workspace_.regular[p]) report.degenerate_rows.push_back(static_cast<std::int32_t>(p));
   ops.fallback_rows = 0;
   if (!report.degenerate_rows.empty())
     degenerate(
@@ -157,13 +221,14 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
              [&](std::size_t i, std::vector<StencilSource>& stencil) {
                const auto x = nodes.point(i);
                const auto self = static_cast<std::int32_t>(i);
-               gather_stencil(x, point_cells, options, -1, stencil);
+               gather(node_row_candidates_, i, point_cells, points, -1, x, stencil);
                if (boundary_row[i] < 0) return RowTarget{x, GradientReference::ShepardCentroid, -1};
                const RowTarget row{x, GradientReference::Self, n_points + self};
                if (row_is_regular(d, x, stencil, options, row.reference, row.self_column))
                  return row;
                std::vector<StencilSource>& neighbours = retry_stencils_[i];
-               gather_stencil(x, node_cells, options, self, neighbours);
+               gather(boundary_row_candidates_, static_cast<std::size_t>(boundary_row[i]),
+                      node_cells, nodes, self, x, neighbours);
                for (StencilSource s : neighbours)
                  if (boundary_row[static_cast<std::size_t>(s.column)] >= 0) {
                    s.column += n_points;
@@ -181,9 +246,19 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration,
   report.degenerate_rows.clear();
   if (ops.boundary_nodes.empty())  // every face is a mirror plane: no half-step rows
     reset_table(ops.boundary_gradient, d);
-  else
-    build_collocated_gradient(nodes, node_cells, options, ops.boundary_nodes, ops.boundary_gradient,
-                              workspace_, &report);
+  else {
+    const std::vector<std::int32_t>& rows = ops.boundary_nodes;
+    build_rows(rows.size(), d, options, TableWeights::InterpolationAndGradient,
+               ops.boundary_gradient, workspace_,
+               [&](std::size_t r, std::vector<StencilSource>& stencil) {
+                 const std::int32_t self = rows[r];
+                 const auto x = nodes.point(static_cast<std::size_t>(self));
+                 gather(boundary_row_candidates_, r, node_cells, nodes, self, x, stencil);
+                 return RowTarget{x, GradientReference::Self, self};
+               });
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      if (!workspace_.regular[r]) report.degenerate_rows.push_back(static_cast<std::int32_t>(r));
+  }
   if (!report.degenerate_rows.empty())
     degenerate(
         report.degenerate_rows.size(), ops,

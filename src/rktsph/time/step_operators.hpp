@@ -28,9 +28,10 @@ struct StepOptions {
   bool hourglass_filter = true;  // ignored in 1D, where midpoint stress points have no such mode
   double hourglass_kappa = 0.1;
   double hourglass_h_over_dx = 1.3;
-  /// On a moving configuration the filter's tables are rebuilt once a node has moved this fraction
-  /// of dx since their last build (docs/theory.md §9.5); 0: before every step.
-  double hourglass_rebuild_distance = 0.1;
+  /// On a moving configuration the stencils are searched again and the filter's tables rebuilt
+  /// once a node has moved this fraction of dx since the last search (docs/theory.md §9.5); 0:
+  /// before every step. The weights follow the nodes every step.
+  double neighbour_search_distance = 0.1;
   std::optional<HourglassFields> hourglass_fields;  // unset: Velocity on compact stencils, else All
   StressUpdate stress_update = StressUpdate::HalfStep;
   HourglassStrength hourglass_stiffness;    // epsilon of docs/theory.md eq. 3.3; 0 = off
@@ -81,8 +82,10 @@ class StepOperatorBuilder {
   void build(const Configuration& configuration, StepOperators& operators);
   /// Boundary nodes and incomplete nodes from the node topology (docs/theory.md §2.6).
   void classify(const Configuration& configuration, StepOperators& operators);
-  /// nodes_to_points, points_to_nodes, boundary_gradient, the incomplete nodes' closure.
-  void build_step_tables(const Configuration& configuration, StepOperators& operators);
+  /// nodes_to_points, points_to_nodes, boundary_gradient, the incomplete nodes' closure. With
+  /// keep_stencil_candidates the stencils are searched in the cell lists only when `search`.
+  void build_step_tables(const Configuration& configuration, StepOperators& operators,
+                         bool search = true);
   /// The hourglass filter's round trip (no-op when the filter is off).
   void build_filter_tables(const Configuration& configuration, StepOperators& operators);
 
@@ -97,6 +100,12 @@ class StepOperatorBuilder {
   /// moving configuration no two rows are alike, so the sharing pass would cost a quarter of the
   /// rebuild and save nothing (docs/theory.md §9.5).
   void keep_filter_weights_per_row() { share_filter_weights_ = false; }
+  /// From now on the step's stencils come from a neighbour list with a skin (docs/theory.md §9.5):
+  /// every source within the support plus `skin` [m] of each row's target, searched in the cell
+  /// lists when build_step_tables is asked to search; the builds in between pick each row's
+  /// stencil from them at the current positions, which is exact while no point has moved more
+  /// than skin / 2 since the search.
+  void keep_stencil_candidates(double skin) { candidate_skin_ = skin; }
   /// The wall time every build so far spent on the neighbour search's cell lists [s].
   double cell_list_seconds() const { return cell_list_seconds_; }
 
@@ -112,6 +121,18 @@ class StepOperatorBuilder {
   bool classified_ = false;
   bool fall_back_ = false;
   bool share_filter_weights_ = true;
+  double candidate_skin_ = -1.0;  // [m]; < 0: every build searches the cell lists at the support
+  /// The candidates of the three kinds of rows: nodes_to_points (point rows, node sources),
+  /// points_to_nodes (node rows, point sources), the boundary nodes' collocated rows (node
+  /// sources, the node itself left out; also the boundary neighbours of a corner's retry).
+  void search_candidates(const PointCloud& nodes, const PointCloud& points,
+                         const std::vector<std::int32_t>& boundary_nodes, double radius);
+  struct CandidateTable {
+    std::vector<std::int64_t> start;  // row r: entries[start[r], start[r + 1])
+    std::vector<StencilCandidate> entries;
+  };
+  CandidateTable point_row_candidates_, node_row_candidates_, boundary_row_candidates_;
+  std::vector<std::vector<StencilCandidate>> candidate_scratch_;  // per row, during a search
   double cell_list_seconds_ = 0.0;
   /// Counts `rows` degenerate rows, or throws `message` for the first when not falling back.
   void degenerate(std::size_t rows, StepOperators& operators, const std::string& message) const;

@@ -31,10 +31,6 @@ const KeyTable<NumericsSpec>& hourglass_keys() {
       number_key<N>("kappa", &N::hourglass_kappa, kUnitInterval, "–", "Filter strength."),
       number_key<N>("h_over_dx", &N::hourglass_h_over_dx, kSmoothingRatioRange, "–",
                     "Smoothing length of the filter over dx."),
-      number_key<N>("rebuild_distance", &N::hourglass_rebuild_distance, kUnitInterval, "–",
-                    "On a moving configuration (large deformation), the filter's tables are "
-                    "rebuilt once a node has moved this fraction of dx since their last build "
-                    "(docs/theory.md §9.5); 0: before every step."),
       optional_number_key<N>(
           "stiffness", &N::hourglass_stiffness, kUnitInterval, "–",
           fmt::format("with stress_update: mean_velocity {} in cells of elastic materials, {} in "
@@ -69,6 +65,11 @@ const KeyTable<NumericsSpec>& numerics_keys() {
                     "Smoothing length over lattice spacing (docs/theory.md §7.1)."),
       integer_key<N, int>("interpolation_order", &N::interpolation_order, 0, 1,
                           "0: Shepard-normalised; 1: first-order corrected."),
+      number_key<N>("neighbour_search_distance", &N::neighbour_search_distance, kUnitInterval, "–",
+                    "On a moving configuration (large deformation): the stencils are searched "
+                    "again, and the hourglass filter's tables built again, once a node has moved "
+                    "this fraction of dx since the last search; the weights follow the nodes every "
+                    "step (docs/theory.md §9.5). 0: a search before every step."),
       number_key<N>("courant", &N::courant, kCourantRange, "–",
                     "C in dt = C dx / c_p, c_p the P-wave speed of the stiffest material."),
       optional_number_key<N>("time_step", &N::time_step, NumberRange::positive(), "s",
