@@ -231,7 +231,8 @@ fi
 if [[ ${RKTSPH_BENCH_MOVING:-1} != 0 ]]; then
   echo
   echo "== moving configuration (large-deformation model: BAR-WAVE-2D S/M/L and the collapsing"
-  echo "   low-cohesion block; every step rebuilds its tables; medians of $repetitions)"
+  echo "   low-cohesion block; every step recomputes its weights, and searches its stencils after"
+  echo "   0.1 dx of motion; medians of $repetitions)"
   run_per_thread_count moving "moving-configuration benchmarks" \
     '^BM_(MovingBarWaveStep|LowCohesionSlopeStep)/'
   if [[ ${#json_files[@]} -gt 0 ]] && ! python3 - "${json_files[@]}" <<'PYTHON'
