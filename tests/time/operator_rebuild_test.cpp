@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -150,8 +151,6 @@ TEST(OperatorRebuild, RebuildsOnMovedConfigurationsEqualFreshBuildsAndDoNotReall
   }
 }
 
-// The row-parallel table builders give the tables of append_row, row by row, on a lattice large
-// enough for the parallel loops (above kParallelThreshold rows).
 // On a moving configuration the stencils are searched again (and the filter rebuilt) exactly when
 // some node has moved more than neighbour_search_distance dx from where it was at the last search
 // (docs/theory.md §9.5): the test keeps its own copy of those positions and checks every step's
@@ -193,6 +192,69 @@ TEST(OperatorRebuild, MovingStencilsAreSearchedAgainOnceANodeHasMovedTheSearchDi
   EXPECT_EQ(every_step.step().neighbour_searches() - at_start, 5);
 }
 
+// Between searches the step's own tables come from the candidates of the last search, picked at
+// the current positions (docs/theory.md §9.5): every row must hold the sources and weights of a
+// fresh build on the same configuration. The entries may come in another order, and a weight may
+// then differ by the rounding of its sums (1e-12 of the row's largest weight bounds that).
+TEST(OperatorRebuild, StepTablesBetweenSearchesAreThoseOfAFreshBuild) {
+  Simulation moving(read_case_text(loaded_cut("{neighbour_search_distance: 0.5}"), "cut.yaml",
+                                   {{"model", "dry_large_deformation"}}));
+  const long searches = moving.step().neighbour_searches();
+  for (int s = 0; s < 30; ++s)
+    moving.step().advance(moving.state(), moving.time_step());
+  const Configuration& configuration = moving.state().configuration;
+  moving.step().rebuild_operators(configuration);
+  ASSERT_EQ(moving.step().neighbour_searches(), searches) << "no search may have happened";
+  double largest_displacement = 0.0;
+  for (const double u : moving.state().displacement.data())
+    largest_displacement = std::max(largest_displacement, std::abs(u));
+  ASSERT_GT(largest_displacement, 1e-6 * moving.nodes().spacing) << "the nodes must have moved";
+
+  const BoundaryConditions& conditions = moving.boundary_conditions();
+  StepOperatorBuilder fresh(moving.nodes(), moving.step().options(), conditions.mirror_planes(),
+                            conditions.mirror_axes());
+  StepOperators expected;
+  fresh.build(configuration, expected);
+  const StepOperators& picked = moving.step().operators();
+  for (const auto& [name, a, b] :
+       {std::tuple{"nodes_to_points", &picked.nodes_to_points, &expected.nodes_to_points},
+        std::tuple{"points_to_nodes", &picked.points_to_nodes, &expected.points_to_nodes},
+        std::tuple{"boundary_gradient", &picked.boundary_gradient, &expected.boundary_gradient}}) {
+    SCOPED_TRACE(name);
+    ASSERT_EQ(a->row_start, b->row_start);
+    for (std::size_t r = 0; r + 1 < a->row_start.size(); ++r) {
+      using Entry = std::tuple<std::int32_t, std::uint8_t, double, double, double>;
+      auto entries = [r](const WeightTable& t) {
+        std::vector<Entry> row;
+        for (auto k = t.row_start[r]; k < t.row_start[r + 1]; ++k) {
+          const auto e = static_cast<std::size_t>(k);
+          row.emplace_back(t.source[e], t.reflection[e], t.interpolation[e], t.gradient[0][e],
+                           t.gradient[1][e]);
+        }
+        std::sort(row.begin(), row.end(), [](const Entry& p, const Entry& q) {
+          return std::tie(std::get<0>(p), std::get<1>(p)) <
+                 std::tie(std::get<0>(q), std::get<1>(q));
+        });
+        return row;
+      };
+      const std::vector<Entry> got = entries(*a), want = entries(*b);
+      double scale = 0.0;
+      for (const Entry& e : want)
+        scale = std::max(
+            {scale, std::abs(std::get<2>(e)), std::abs(std::get<3>(e)), std::abs(std::get<4>(e))});
+      for (std::size_t k = 0; k < want.size(); ++k) {
+        ASSERT_EQ(std::get<0>(got[k]), std::get<0>(want[k])) << "row " << r;
+        ASSERT_EQ(std::get<1>(got[k]), std::get<1>(want[k])) << "row " << r;
+        EXPECT_NEAR(std::get<2>(got[k]), std::get<2>(want[k]), 1e-12 * scale) << "row " << r;
+        EXPECT_NEAR(std::get<3>(got[k]), std::get<3>(want[k]), 1e-12 * scale) << "row " << r;
+        EXPECT_NEAR(std::get<4>(got[k]), std::get<4>(want[k]), 1e-12 * scale) << "row " << r;
+      }
+    }
+  }
+}
+
+// The row-parallel table builders give the tables of append_row, row by row, on a lattice large
+// enough for the parallel loops (above kParallelThreshold rows).
 TEST(OperatorRebuild, ParallelCrossOperatorEqualsRowByRowAppend) {
   test::ElasticBlock block;  // the cut of loaded_cut, finer, with its mirror side
   block.spacing = 0.1;

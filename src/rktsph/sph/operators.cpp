@@ -106,11 +106,11 @@ bool on_a_plane(const Vector& x, const std::vector<MirrorPlane>& mirrors, unsign
 
 /// Calls visit(j, subset, reflection, x_j) for every source j of `cells` within `radius` of
 /// `target` or of its mirror images: the subsets of planes in turn, the sources of each in cell
-/// order.
+/// order. With `skip_on_plane` the image of a source lying on a plane of its subset is left out.
 template <class Visit>
 void for_each_stencil_source(const Vector& target, const CellList& cells,
                              const OperatorOptions& options, std::int32_t exclude, double radius,
-                             Visit&& visit) {
+                             bool skip_on_plane, Visit&& visit) {
   const double on_plane_tolerance = 1e-8 * options.smoothing_length;
   const PointCloud& sources = cells.points();
   const auto& mirrors = options.mirrors;
@@ -122,7 +122,7 @@ void for_each_stencil_source(const Vector& target, const CellList& cells,
     cells.for_each_within(query, radius, [&](std::int32_t j, const Vector&, double) {
       if (subset == 0 && j == exclude) return;
       const Vector x = sources.point(static_cast<std::size_t>(j));
-      if (on_a_plane(x, mirrors, subset, on_plane_tolerance)) return;
+      if (skip_on_plane && on_a_plane(x, mirrors, subset, on_plane_tolerance)) return;
       visit(j, subset, reflection, x);
     });
   }
@@ -137,7 +137,7 @@ void gather_stencil(const Vector& target, const CellList& cells, const OperatorO
   const double support = options.kernel.support_radius(options.smoothing_length);
   const PointCloud& sources = cells.points();
   for_each_stencil_source(
-      target, cells, options, exclude, support,
+      target, cells, options, exclude, support, true,
       [&](std::int32_t j, unsigned subset, std::uint8_t reflection, const Vector& x) {
         stencil.push_back(StencilSource{j, reflection, reflect(x, options.mirrors, subset),
                                         sources.volume[static_cast<std::size_t>(j)]});
@@ -149,8 +149,10 @@ void gather_candidates(const Vector& target, const CellList& cells, const Operat
                        std::vector<StencilCandidate>& candidates) {
   candidates.clear();
   check_mirror_count(options);
+  // Images of sources on a plane are kept: the source may leave the plane before the next search,
+  // and the picking tests where it is then.
   for_each_stencil_source(
-      target, cells, options, exclude, radius,
+      target, cells, options, exclude, radius, false,
       [&](std::int32_t j, unsigned subset, std::uint8_t reflection, const Vector&) {
         candidates.push_back(StencilCandidate{j, static_cast<std::uint8_t>(subset), reflection});
       });

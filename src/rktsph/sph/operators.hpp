@@ -115,7 +115,8 @@ struct StencilCandidate {
 };
 
 /// A neighbour list with a skin (docs/theory.md §9.5): the sources, and images, that
-/// gather_stencil would find within `radius` (> the support) instead of the support, in its order.
+/// gather_stencil would find within `radius` (>= the support) instead of the support, in its
+/// order, the images of sources lying on their plane included (they may leave it).
 void gather_candidates(const std::array<double, 3>& target, const CellList& cells,
                        const OperatorOptions& options, std::int32_t exclude, double radius,
                        std::vector<StencilCandidate>& candidates);

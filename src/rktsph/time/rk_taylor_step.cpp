@@ -34,7 +34,7 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
     // of the case, thrown by the build above (docs/theory.md §9.5).
     builder_.fall_back_on_degenerate_stencils();
     builder_.keep_filter_weights_per_row();
-    builder_.keep_stencil_candidates(2.0 * options.neighbour_search_distance * reference.spacing);
+    builder_.keep_stencil_candidates(options.neighbour_search_distance * reference.spacing);
     // Searched again with the skin, and the filter built with a weight per row, as every later
     // search does, so that a restart searching from the configuration of the last search gets
     // these stencils and tables bit for bit.
@@ -156,12 +156,16 @@ void RkTaylorStep::bind_operators(const Configuration& configuration) {
 }
 
 void RkTaylorStep::rebuild_operators(const Configuration& configuration) {
+  if (!motion_) {  // a fixed configuration: everything again, as at the start
+    builder_.build(configuration, operators_);
+    bind_operators(configuration);
+    return;
+  }
   builder_.classify(configuration, operators_);
   if (neighbours_out_of_date(configuration))
     search_neighbours(configuration);
   else
     builder_.build_step_tables(configuration, operators_, false);  // new weights, same stencils
-  operators_.fallback_rows += filter_fallback_rows_;
   bind_operators(configuration);
 }
 
@@ -192,10 +196,7 @@ bool RkTaylorStep::neighbours_out_of_date(const Configuration& configuration) co
 
 void RkTaylorStep::search_neighbours(const Configuration& configuration) {
   builder_.build_step_tables(configuration, operators_, true);
-  const std::size_t before = operators_.fallback_rows;
   builder_.build_filter_tables(configuration, operators_);  // no-op with the filter off
-  filter_fallback_rows_ = operators_.fallback_rows - before;
-  operators_.fallback_rows = before;
   if (&configuration != &search_configuration_) search_configuration_ = configuration;
   ++neighbour_searches_;
 }

@@ -61,7 +61,9 @@ class RkTaylorStep {
   const OperatorOptions& operator_options() const { return builder_.operator_options(); }
   /// The fields the hourglass filter acts on (resolved from the stencils when the case is silent).
   HourglassFields hourglass_fields() const { return hourglass_fields_; }
-  /// Rebuilds the operators on `configuration` and what the step derives from them.
+  /// Rebuilds the operators on `configuration` and what the step derives from them: all of them on
+  /// a fixed configuration; on a moving one the step's weights, and its stencils and the filter's
+  /// tables once a node has moved the search distance since the last search (docs/theory.md §9.5).
   void rebuild_operators(const Configuration& configuration);
   const HourglassStiffness& hourglass_stiffness() const { return hourglass_stiffness_; }
   const StrainHourglassStiffness& strain_hourglass_stiffness() const {
@@ -142,10 +144,9 @@ class RkTaylorStep {
   std::vector<int> velocity_gradient_of_fields_, velocity_gradient_of_velocity_;
   HourglassFields hourglass_fields_ = HourglassFields::Velocity;
   bool filter_active_ = false;
-  // Moving configurations: where the stencils were last searched and the filter built, the
-  // filter's degenerate rows, and the count of searches (docs/theory.md §9.5).
+  // Moving configurations: where the stencils were last searched and the filter built, and the
+  // count of searches (docs/theory.md §9.5).
   Configuration search_configuration_;
-  std::size_t filter_fallback_rows_ = 0;
   long neighbour_searches_ = 0;
   double viscosity_length_ = 0.0;  // alpha * dx of the artificial viscosity (0 = off)
   const BoundaryConditions& conditions_;

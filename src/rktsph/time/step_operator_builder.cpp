@@ -23,6 +23,13 @@ bool is_incomplete(int occupied, int dimension) {
   return occupied < (1 << dimension);
 }
 
+/// The rows of the last build_rows that compute_row found degenerate, into `report`.
+void collect_degenerate_rows(const OperatorWorkspace& workspace, std::size_t rows,
+                             StencilReport& report) {
+  for (std::size_t r = 0; r < rows; ++r)
+    if (!workspace.regular[r]) report.degenerate_rows.push_back(static_cast<std::int32_t>(r));
+}
+
 bool needs_boundary_half_step(int occupied, int dimension) {
   const bool reentrant_corner = dimension == 2 && occupied == (1 << dimension) - 1;
   return is_incomplete(occupied, dimension) && !reentrant_corner;
@@ -151,13 +158,13 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration, 
   const double support = options.kernel.support_radius(options.smoothing_length);
   // With a skin the stencils come from the candidates, searched again only when asked; without,
   // from the cell lists every build.
-  const bool candidates = candidate_skin_ >= 0.0;
-  if (search || !candidates) {
+  const bool from_candidates = candidate_skin_ > 0.0;
+  if (search || !from_candidates) {
     auto clock = std::chrono::steady_clock::now();
-    const double radius = candidates ? support + candidate_skin_ : support;
+    const double radius = from_candidates ? support + candidate_skin_ : support;
     node_cells_.rebuild(nodes, radius);
     point_cells_.rebuild(points, radius);
-    if (candidates) search_candidates(nodes, points, ops.boundary_nodes, radius);
+    if (from_candidates) search_candidates(nodes, points, ops.boundary_nodes, radius);
     cell_list_seconds_ += lap(clock);
   }
   const CellList& node_cells = node_cells_;
@@ -166,7 +173,7 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration, 
   const auto gather = [&](const CandidateTable& table, std::size_t r, const CellList& cells,
                           const PointCloud& sources, std::int32_t exclude,
                           const std::array<double, 3>& x, std::vector<StencilSource>& stencil) {
-    if (candidates)
+    if (from_candidates)
       gather_stencil(x, sources,
                      std::span<const StencilCandidate>(table.entries.data() + table.start[r],
                                                        table.entries.data() + table.start[r + 1]),
@@ -182,8 +189,7 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration, 
                gather(point_row_candidates_, p, node_cells, nodes, -1, x, stencil);
                return RowTarget{x, GradientReference::ShepardCentroid, -1};
              });
-  for (std::size_t p = 0; p < points.size(); ++p)
-    if (!workspace_.regular[p]) report.degenerate_rows.push_back(static_cast<std::int32_t>(p));
+  collect_degenerate_rows(workspace_, points.size(), report);
   ops.fallback_rows = 0;
   if (!report.degenerate_rows.empty())
     degenerate(
@@ -256,8 +262,7 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration, 
                  gather(boundary_row_candidates_, r, node_cells, nodes, self, x, stencil);
                  return RowTarget{x, GradientReference::Self, self};
                });
-    for (std::size_t r = 0; r < rows.size(); ++r)
-      if (!workspace_.regular[r]) report.degenerate_rows.push_back(static_cast<std::int32_t>(r));
+    collect_degenerate_rows(workspace_, rows.size(), report);
   }
   if (!report.degenerate_rows.empty())
     degenerate(

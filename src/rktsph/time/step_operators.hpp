@@ -101,11 +101,12 @@ class StepOperatorBuilder {
   /// rebuild and save nothing (docs/theory.md §9.5).
   void keep_filter_weights_per_row() { share_filter_weights_ = false; }
   /// From now on the step's stencils come from a neighbour list with a skin (docs/theory.md §9.5):
-  /// every source within the support plus `skin` [m] of each row's target, searched in the cell
-  /// lists when build_step_tables is asked to search; the builds in between pick each row's
-  /// stencil from them at the current positions, which is exact while no point has moved more
-  /// than skin / 2 since the search.
-  void keep_stencil_candidates(double skin) { candidate_skin_ = skin; }
+  /// every source within the support plus 2 `search_distance` [m] of each row's target, searched
+  /// in the cell lists when build_step_tables is asked to search; the builds in between pick each
+  /// row's stencil from them at the current positions, which is exact while no point has moved
+  /// more than `search_distance` since the search (no pair has then come closer by more than
+  /// twice that). A distance of 0 keeps a search in every build.
+  void keep_stencil_candidates(double search_distance) { candidate_skin_ = 2.0 * search_distance; }
   /// The wall time every build so far spent on the neighbour search's cell lists [s].
   double cell_list_seconds() const { return cell_list_seconds_; }
 
@@ -121,12 +122,7 @@ class StepOperatorBuilder {
   bool classified_ = false;
   bool fall_back_ = false;
   bool share_filter_weights_ = true;
-  double candidate_skin_ = -1.0;  // [m]; < 0: every build searches the cell lists at the support
-  /// The candidates of the three kinds of rows: nodes_to_points (point rows, node sources),
-  /// points_to_nodes (node rows, point sources), the boundary nodes' collocated rows (node
-  /// sources, the node itself left out; also the boundary neighbours of a corner's retry).
-  void search_candidates(const PointCloud& nodes, const PointCloud& points,
-                         const std::vector<std::int32_t>& boundary_nodes, double radius);
+  double candidate_skin_ = 0.0;  // [m]; 0: every build searches the cell lists at the support
   struct CandidateTable {
     std::vector<std::int64_t> start;  // row r: entries[start[r], start[r + 1])
     std::vector<StencilCandidate> entries;
@@ -134,6 +130,11 @@ class StepOperatorBuilder {
   CandidateTable point_row_candidates_, node_row_candidates_, boundary_row_candidates_;
   std::vector<std::vector<StencilCandidate>> candidate_scratch_;  // per row, during a search
   double cell_list_seconds_ = 0.0;
+  /// The candidates of the three kinds of rows: nodes_to_points (point rows, node sources),
+  /// points_to_nodes (node rows, point sources), the boundary nodes' collocated rows (node
+  /// sources, the node itself left out; also the boundary neighbours of a corner's retry).
+  void search_candidates(const PointCloud& nodes, const PointCloud& points,
+                         const std::vector<std::int32_t>& boundary_nodes, double radius);
   /// Counts `rows` degenerate rows, or throws `message` for the first when not falling back.
   void degenerate(std::size_t rows, StepOperators& operators, const std::string& message) const;
   std::vector<std::int32_t> boundary_nodes_, node_to_boundary_row_, incomplete_nodes_;
