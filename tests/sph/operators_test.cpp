@@ -4,6 +4,7 @@
 #include "rktsph/sph/operators.hpp"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -427,6 +428,40 @@ TEST(StencilCandidates, PickTheStencilOfAFreshSearchWhilePointsMoveLessThanHalfT
   }
   EXPECT_GT(compared, 10 * moved.size());
   EXPECT_GT(with_images, 0u) << "some stencils must hold images across both planes";
+}
+
+// build_rows computes each thread's rows into a block of its own and copies the blocks into the
+// table: the table must be the serial one whatever the thread count, also when one workspace is
+// reused across thread counts and sizes (blocks left over from more threads, blocks that grow).
+TEST(TableBuild, TablesDoNotDependOnThreadCountOrOnTheWorkspacesEarlierBuilds) {
+  const OperatorOptions options = options_for(2, 0.75 * 0.02, 1);
+  const NodeSets small = rectangle_lattice(1.0, 1.0, 0.02);  // 2 601 nodes: below the threshold
+  const NodeSets large = rectangle_lattice(2.0, 1.5, 0.02);  // 7 676 nodes, 7 500 points
+  const auto build = [&](const NodeSets& lattice, int threads, OperatorWorkspace& workspace) {
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    WeightTable table;
+    build_cross_operator(lattice.stress_points,
+                         CellList(lattice.sph_nodes, options.kernel.support_radius(0.015)), options,
+                         table, workspace);
+    omp_set_num_threads(saved);
+    return table;
+  };
+  OperatorWorkspace fresh;
+  const WeightTable serial = build(large, 1, fresh);
+  ASSERT_GT(serial.rows(), static_cast<std::size_t>(kParallelThreshold));
+  OperatorWorkspace reused;
+  for (const int threads : {4, 3, 1, 2}) {
+    build(small, threads, reused);  // the blocks of a smaller build first
+    const WeightTable table = build(large, threads, reused);
+    EXPECT_EQ(table.row_start, serial.row_start) << threads << " threads";
+    EXPECT_EQ(table.source, serial.source) << threads << " threads";
+    EXPECT_EQ(table.reflection, serial.reflection) << threads << " threads";
+    EXPECT_EQ(table.interpolation, serial.interpolation) << threads << " threads";
+    for (std::size_t a = 0; a < 3; ++a)
+      EXPECT_EQ(table.gradient[a], serial.gradient[a]) << threads << " threads, axis " << a;
+    EXPECT_EQ(table.has_reflections, serial.has_reflections);
+  }
 }
 
 }  // namespace

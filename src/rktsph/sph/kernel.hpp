@@ -33,6 +33,26 @@ class Kernel {
     return normalisation_ * inverse_power(inverse_length) * shape(q);
   }
 
+  /// The factors of value() and derivative() that depend on h only, for many evaluations at one
+  /// smoothing length (a stencil's row): the same arithmetic, computed once.
+  struct Scales {
+    double inverse_length;
+    double value_factor;       // normalisation / h^d
+    double derivative_factor;  // normalisation / h^(d+1)
+  };
+  Scales scales(double smoothing_length) const {
+    const double inverse_length = 1.0 / smoothing_length;
+    const double value_factor = normalisation_ * inverse_power(inverse_length);
+    return {inverse_length, value_factor, value_factor * inverse_length};
+  }
+  /// value(distance, h) and derivative(distance, h), bit for bit, with scales(h).
+  double value(double distance, const Scales& at) const {
+    return at.value_factor * shape(distance * at.inverse_length);
+  }
+  double derivative(double distance, const Scales& at) const {
+    return at.derivative_factor * shape_derivative(distance * at.inverse_length);
+  }
+
   /// dW/dr [1/m^(d+1)], never positive; 0 at r = 0 and beyond the support.
   double derivative(double distance, double smoothing_length) const {
     const double inverse_length = 1.0 / smoothing_length;

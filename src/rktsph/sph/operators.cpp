@@ -1,6 +1,10 @@
 #include "rktsph/sph/operators.hpp"
 #include "rktsph/core/parallel.hpp"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include <algorithm>
 #include <bit>
 #include <cassert>
@@ -194,12 +198,16 @@ void gather_stencil(const Vector& target, const PointCloud& sources,
   }
 }
 
-bool compute_row(int dimension, const Vector& target, std::span<const StencilSource> stencil,
-                 const OperatorOptions& options, GradientReference reference,
-                 std::int32_t self_column, const RowSlots& slots) {
-  const int d = dimension;
+namespace {
+
+// compute_row for a dimension known at compile time: the loops over axes unrolled, the kernel's
+// factors of h computed once per row. The arithmetic is the generic one's, term by term.
+template <int D>
+bool compute_row_in(const Vector& target, std::span<const StencilSource> stencil,
+                    const OperatorOptions& options, GradientReference reference,
+                    std::int32_t self_column, const RowSlots& slots) {
   const Kernel& kernel = options.kernel;
-  const double h = options.smoothing_length;
+  const Kernel::Scales scales = kernel.scales(options.smoothing_length);
   const std::size_t n = stencil.size();
   double* interpolation = slots.interpolation;
   const std::array<double*, 3>& gradient = slots.gradient;
@@ -211,21 +219,25 @@ bool compute_row(int dimension, const Vector& target, std::span<const StencilSou
     const StencilSource& s = stencil[k];
     Vector offset{};
     double r2 = 0.0;
-    for (int a = 0; a < d; ++a) {
+    for (int a = 0; a < D; ++a) {
       offset[a] = target[a] - s.position[a];
       r2 += offset[a] * offset[a];
     }
     const double distance = std::sqrt(r2);
-    const double w = kernel.value(distance, h) * s.volume;
-    const Vector g = kernel.gradient(offset, distance, h);
+    const double w = kernel.value(distance, scales) * s.volume;
+    // grad W = (dW/dr / r) offset, and the zero vector at r = 0, where dW/dr -> 0 (Kernel).
+    const double scale = distance == 0.0 ? 0.0 : kernel.derivative(distance, scales) / distance;
     slots.source[k] = s.column;
     slots.reflection[k] = s.reflection;
     interpolation[k] = w;
-    for (int a = 0; a < 3; ++a)
-      if (gradient[a]) gradient[a][k] = a < d ? g[a] * s.volume : 0.0;
+    for (int a = 0; a < D; ++a) {
+      const double g = (distance == 0.0 ? 0.0 : scale * offset[a]) * s.volume;
+      gradient[a][k] = g;
+      gradient_sum[a] += g;
+    }
+    for (int a = D; a < 3; ++a)
+      if (gradient[a]) gradient[a][k] = 0.0;
     weight_sum += w;
-    for (int a = 0; a < d; ++a)
-      gradient_sum[a] += g[a] * s.volume;
   }
 
   // Reference point: the Shepard centroid (cross-set) or the target itself (self-referenced).
@@ -233,7 +245,7 @@ bool compute_row(int dimension, const Vector& target, std::span<const StencilSou
   if (reference == GradientReference::ShepardCentroid && weight_sum > 0.0) {
     reference_point = {0.0, 0.0, 0.0};
     for (std::size_t k = 0; k < n; ++k)
-      for (int a = 0; a < d; ++a)
+      for (int a = 0; a < D; ++a)
         reference_point[a] += interpolation[k] / weight_sum * stencil[k].position[a];
   }
 
@@ -242,25 +254,25 @@ bool compute_row(int dimension, const Vector& target, std::span<const StencilSou
   double scale = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     double g_norm = 0.0, x_norm = 0.0;
-    for (int a = 0; a < d; ++a) {
+    for (int a = 0; a < D; ++a) {
       const double g = gradient[a][k];
       g_norm += g * g;
       const double x = stencil[k].position[a] - reference_point[a];
       x_norm += x * x;
-      for (int b = 0; b < d; ++b)
+      for (int b = 0; b < D; ++b)
         correction[a][b] += g * (stencil[k].position[b] - reference_point[b]);
     }
     scale += std::sqrt(g_norm * x_norm);
   }
-  const double det = determinant(correction, d);
+  const double det = determinant(correction, D);
   const bool regular = n > 0 && weight_sum > 0.0 && scale > 0.0 &&
-                       std::abs(det) >= options.degeneracy_tolerance * integer_power(scale / d, d);
+                       std::abs(det) >= options.degeneracy_tolerance * integer_power(scale / D, D);
 
   Matrix inverse_correction{};
   if (regular) {
-    inverse_correction = inverse(correction, d, det);
+    inverse_correction = inverse(correction, D, det);
   } else {
-    for (int a = 0; a < d; ++a)
+    for (int a = 0; a < D; ++a)
       inverse_correction[a][a] = 1.0;  // uncorrected SPH gradient
   }
 
@@ -268,12 +280,12 @@ bool compute_row(int dimension, const Vector& target, std::span<const StencilSou
   for (std::size_t k = 0; k < n; ++k) {
     const double shepard = weight_sum > 0.0 ? interpolation[k] / weight_sum : 0.0;
     Vector raw{};
-    for (int a = 0; a < d; ++a)
+    for (int a = 0; a < D; ++a)
       raw[a] = gradient[a][k] -
                (reference == GradientReference::ShepardCentroid ? gradient_sum[a] * shepard : 0.0);
-    for (int a = 0; a < d; ++a) {
+    for (int a = 0; a < D; ++a) {
       double value = 0.0;
-      for (int b = 0; b < d; ++b)
+      for (int b = 0; b < D; ++b)
         value += inverse_correction[a][b] * raw[b];
       gradient[a][k] = value;
     }
@@ -284,14 +296,14 @@ bool compute_row(int dimension, const Vector& target, std::span<const StencilSou
     // First-order interpolation: f_a = f^ - (x_ref - x_a) . grad f (docs/theory.md eq. 4.4).
     if (options.interpolation_order == 1 && regular)
       for (std::size_t k = 0; k < n; ++k)
-        for (int a = 0; a < d; ++a)
+        for (int a = 0; a < D; ++a)
           interpolation[k] -= (reference_point[a] - target[a]) * gradient[a][k];
   } else {
     // Self column: its value is the reference, so its weight cancels the others' sum.
     Vector self_gradient{};
     for (std::size_t k = 0; k < n; ++k) {
       interpolation[k] = 0.0;
-      for (int a = 0; a < d; ++a)
+      for (int a = 0; a < D; ++a)
         self_gradient[a] -= gradient[a][k];
     }
     slots.source[n] = self_column;
@@ -301,6 +313,21 @@ bool compute_row(int dimension, const Vector& target, std::span<const StencilSou
       if (gradient[a]) gradient[a][n] = self_gradient[a];
   }
   return regular;
+}
+
+}  // namespace
+
+bool compute_row(int dimension, const Vector& target, std::span<const StencilSource> stencil,
+                 const OperatorOptions& options, GradientReference reference,
+                 std::int32_t self_column, const RowSlots& slots) {
+  switch (dimension) {
+    case 1:
+      return compute_row_in<1>(target, stencil, options, reference, self_column, slots);
+    case 2:
+      return compute_row_in<2>(target, stencil, options, reference, self_column, slots);
+    default:
+      return compute_row_in<3>(target, stencil, options, reference, self_column, slots);
+  }
 }
 
 namespace {
@@ -386,11 +413,76 @@ void reset_table(WeightTable& table, int dimension) {
   table.row_reflects.clear();
 }
 
-void compute_rows(int dimension, const OperatorOptions& options, TableWeights weights,
-                  WeightTable& table, OperatorWorkspace& workspace) {
-  const std::size_t row_count = table.row_start.size() - 1;
-  std::partial_sum(table.row_start.begin(), table.row_start.end(), table.row_start.begin());
-  const auto entries = static_cast<std::size_t>(table.row_start.back());
+namespace row_blocks {
+
+int begin(std::size_t row_count, WeightTable& table, OperatorWorkspace& workspace) {
+  table.row_start.resize(row_count + 1);
+  table.row_start[0] = 0;
+  workspace.regular.resize(row_count);
+  int threads = 1;
+#ifdef _OPENMP
+  if (static_cast<std::int64_t>(row_count) > kParallelThreshold) threads = omp_get_max_threads();
+#endif
+  if (workspace.blocks.size() < static_cast<std::size_t>(threads))
+    workspace.blocks.resize(static_cast<std::size_t>(threads));
+  return threads;
+}
+
+RowBlock& own(std::size_t row_count, OperatorWorkspace& workspace, std::size_t& first,
+              std::size_t& last) {
+  std::size_t thread = 0, threads = 1;
+#ifdef _OPENMP
+  thread = static_cast<std::size_t>(omp_get_thread_num());
+  threads = static_cast<std::size_t>(omp_get_num_threads());
+#endif
+  first = row_count * thread / threads;
+  last = row_count * (thread + 1) / threads;
+  RowBlock& block = workspace.blocks[thread];
+  block.entries = 0;
+  block.reflections = false;
+  return block;
+}
+
+void compute(int dimension, const OperatorOptions& options, const RowTarget& target,
+             std::size_t row, WeightTable& table, OperatorWorkspace& workspace, RowBlock& block) {
+  const std::size_t first = block.entries;
+  const std::size_t end = first + row_size(block.stencil.size(), target.reference);
+  if (block.source.size() < end) {  // grows geometrically, then never again
+    block.source.resize(end);
+    block.reflection.resize(end);
+    block.interpolation.resize(end);
+    for (auto& g : block.gradient)
+      g.resize(end);
+  }
+  const RowSlots slots{block.source.data() + first,
+                       block.reflection.data() + first,
+                       block.interpolation.data() + first,
+                       {block.gradient[0].data() + first, block.gradient[1].data() + first,
+                        block.gradient[2].data() + first}};
+  workspace.regular[row] = compute_row(dimension, target.position, block.stencil, options,
+                                       target.reference, target.self_column, slots)
+                               ? 1
+                               : 0;
+  for (const StencilSource& s : block.stencil)
+    block.reflections = block.reflections || s.reflection != 0;
+  block.entries = end;
+  table.row_start[row + 1] = static_cast<std::int64_t>(end);
+}
+
+void size_table(int dimension, TableWeights weights, WeightTable& table,
+                OperatorWorkspace& workspace) {
+  std::size_t threads = 1;
+#ifdef _OPENMP
+  threads = static_cast<std::size_t>(omp_get_num_threads());
+#endif
+  std::size_t entries = 0;
+  bool reflections = false;
+  for (std::size_t t = 0; t < threads; ++t) {
+    RowBlock& block = workspace.blocks[t];
+    block.offset = entries;
+    entries += block.entries;
+    reflections = reflections || block.reflections;
+  }
   const bool keep_gradient = weights == TableWeights::InterpolationAndGradient;
   table.dimension = dimension;
   // resize, not clear + resize: a table of the same size is neither freed nor refilled.
@@ -400,40 +492,26 @@ void compute_rows(int dimension, const OperatorOptions& options, TableWeights we
   for (auto& g : table.gradient)
     g.resize(keep_gradient ? entries : 0);
   table.has_gradient = keep_gradient;
+  table.has_reflections = reflections;
   table.weight_start.clear();
   table.row_reflects.clear();
-  workspace.regular.resize(row_count);
-
-  const auto rows = static_cast<std::int64_t>(row_count);
-  bool reflections = false;
-#pragma omp parallel for schedule(static) reduction(|| : reflections) if (rows > kParallelThreshold)
-  for (std::int64_t r = 0; r < rows; ++r) {
-    const auto row = static_cast<std::size_t>(r);
-    const std::span<const StencilSource> stencil = workspace.stencils[row];
-    const RowTarget& target = workspace.targets[row];
-    const auto first = static_cast<std::size_t>(table.row_start[row]);
-    RowSlots slots{table.source.data() + first,
-                   table.reflection.data() + first,
-                   table.interpolation.data() + first,
-                   {}};
-    bool regular;
-    if (keep_gradient) {
-      for (std::size_t a = 0; a < 3; ++a)
-        slots.gradient[a] = table.gradient[a].data() + first;
-      regular = compute_row(dimension, target.position, stencil, options, target.reference,
-                            target.self_column, slots);
-    } else {
-      const RowScratch scratch(row_size(stencil.size(), target.reference));
-      slots.gradient = scratch.slots().gradient;
-      regular = compute_row(dimension, target.position, stencil, options, target.reference,
-                            target.self_column, slots);
-    }
-    workspace.regular[row] = regular ? 1 : 0;
-    for (const StencilSource& s : stencil)
-      reflections = reflections || s.reflection != 0;
-  }
-  table.has_reflections = reflections;
 }
+
+void place(TableWeights weights, std::size_t first, std::size_t last, const RowBlock& block,
+           WeightTable& table) {
+  const auto offset = static_cast<std::int64_t>(block.offset);
+  for (std::size_t row = first; row < last; ++row)
+    table.row_start[row + 1] += offset;
+  const std::size_t n = block.entries;
+  std::copy_n(block.source.data(), n, table.source.data() + block.offset);
+  std::copy_n(block.reflection.data(), n, table.reflection.data() + block.offset);
+  std::copy_n(block.interpolation.data(), n, table.interpolation.data() + block.offset);
+  if (weights == TableWeights::InterpolationAndGradient)
+    for (std::size_t a = 0; a < 3; ++a)
+      std::copy_n(block.gradient[a].data(), n, table.gradient[a].data() + block.offset);
+}
+
+}  // namespace row_blocks
 
 namespace {
 

@@ -177,15 +177,28 @@ struct StencilReport {
   std::vector<std::int32_t> degenerate_rows;
 };
 
-/// Buffers of the parallel table builders below, kept between builds: each row's stencil is
-/// gathered into its own buffer (in parallel), the row sizes are prefix-summed, then each row's
-/// weights are computed into its part of the table (in parallel). Row order and the arithmetic
-/// inside a row are those of the serial build, so tables do not depend on the thread count; a
-/// rebuild of the same size allocates nothing once the buffers have grown.
+/// One thread's rows of a build (build_rows): each row's stencil is gathered into `stencil` and
+/// its weights computed at once into the block's arrays, which are then copied into the table at
+/// the block's offset. The stencil stays in the cache between the gather and the weights, and no
+/// row keeps a buffer of its own. The arrays only grow, so a rebuild allocates nothing once they
+/// have reached their size.
+struct RowBlock {
+  std::vector<StencilSource> stencil;
+  std::vector<std::int32_t> source;
+  std::vector<std::uint8_t> reflection;
+  std::vector<double> interpolation;
+  std::array<std::vector<double>, 3> gradient;
+  std::size_t entries = 0;  ///< entries of the block's rows so far
+  std::size_t offset = 0;   ///< where they start in the table
+  bool reflections = false;
+};
+
+/// Buffers of the parallel table builders below, kept between builds: one RowBlock per thread,
+/// each thread taking a contiguous range of rows. Row order and the arithmetic inside a row are
+/// those of the serial build, so tables do not depend on the thread count.
 struct OperatorWorkspace {
-  std::vector<std::vector<StencilSource>> stencils;  ///< per row (never shrunk: kept capacity)
-  std::vector<RowTarget> targets;                    ///< per row
-  std::vector<std::uint8_t> regular;                 ///< per row
+  std::vector<RowBlock> blocks;       ///< per thread
+  std::vector<std::uint8_t> regular;  ///< per row
 };
 
 /// Buffers of share_row_weights (docs/theory.md §3.3), kept between builds.
@@ -232,35 +245,49 @@ void build_collocated_gradient(const PointCloud& points, const CellList& cells,
                                WeightTable& table, OperatorWorkspace& workspace,
                                StencilReport* report = nullptr);
 
-/// Second half of build_rows: prefix-sums the row sizes in table.row_start[1..], sizes the
-/// table and computes every row into its part (in parallel).
-void compute_rows(int dimension, const OperatorOptions& options, TableWeights weights,
-                  WeightTable& table, OperatorWorkspace& workspace);
+/// The parts of build_rows around its gather (operators.cpp).
+namespace row_blocks {
+/// Sizes row_start, regular and the blocks for `row_count` rows; the threads to use.
+int begin(std::size_t row_count, WeightTable& table, OperatorWorkspace& workspace);
+/// This thread's block and its rows [first, last) among `row_count`.
+RowBlock& own(std::size_t row_count, OperatorWorkspace& workspace, std::size_t& first,
+              std::size_t& last);
+/// Computes row `row` (its stencil in block.stencil) into the block; row_start[row + 1] gets the
+/// block's entries so far.
+void compute(int dimension, const OperatorOptions& options, const RowTarget& target,
+             std::size_t row, WeightTable& table, OperatorWorkspace& workspace, RowBlock& block);
+/// After every block is computed (one thread): the blocks' offsets and the table's size.
+void size_table(int dimension, TableWeights weights, WeightTable& table,
+                OperatorWorkspace& workspace);
+/// Each thread: its rows' starts shifted by the block's offset, its entries copied in.
+void place(TableWeights weights, std::size_t first, std::size_t last, const RowBlock& block,
+           WeightTable& table);
+}  // namespace row_blocks
 
 /// The row machinery of the two builders, for tables whose rows need stencils of their own (the
 /// step's points_to_nodes): for each row r, in parallel, gather(r, stencil) fills the reused
-/// buffer `stencil` and returns the row's RowTarget; then each row's weights are computed by
-/// compute_row into its part of `table`, which is overwritten. Rows compute_row calls degenerate
-/// get workspace.regular[r] = 0. `gather` runs inside a parallel region: it must not throw.
+/// buffer `stencil` and returns the row's RowTarget, and compute_row computes the row's weights
+/// at once; the table is overwritten. Rows compute_row calls degenerate get
+/// workspace.regular[r] = 0. `gather` runs inside a parallel region: it must not throw.
 template <class Gather>
 void build_rows(std::size_t row_count, int dimension, const OperatorOptions& options,
                 TableWeights weights, WeightTable& table, OperatorWorkspace& workspace,
                 Gather&& gather) {
   check_mirror_count(options);  // gather_stencil's one throw, before the parallel region
-  if (workspace.stencils.size() < row_count) workspace.stencils.resize(row_count);
-  workspace.targets.resize(row_count);
-  table.row_start.resize(row_count + 1);
-  table.row_start[0] = 0;
-  const auto rows = static_cast<std::int64_t>(row_count);
-#pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
-  for (std::int64_t r = 0; r < rows; ++r) {
-    const auto row = static_cast<std::size_t>(r);
-    std::vector<StencilSource>& stencil = workspace.stencils[row];
-    workspace.targets[row] = gather(row, stencil);
-    table.row_start[row + 1] =
-        static_cast<std::int64_t>(row_size(stencil.size(), workspace.targets[row].reference));
+  const int threads = row_blocks::begin(row_count, table, workspace);
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    std::size_t first = 0, last = 0;
+    RowBlock& block = row_blocks::own(row_count, workspace, first, last);
+    for (std::size_t row = first; row < last; ++row) {
+      const RowTarget target = gather(row, block.stencil);
+      row_blocks::compute(dimension, options, target, row, table, workspace, block);
+    }
+#pragma omp barrier
+#pragma omp single
+    row_blocks::size_table(dimension, weights, table, workspace);
+    row_blocks::place(weights, first, last, block, table);
   }
-  compute_rows(dimension, options, weights, table, workspace);
 }
 
 /// Frees the gradient weights of a table used only for interpolation (the hourglass filter).
