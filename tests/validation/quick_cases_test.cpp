@@ -44,11 +44,6 @@ const std::map<std::string, std::map<std::string, std::string>>& known_open_chec
       "the cell beside the strip footing's edge takes the whole velocity jump between the footing "
       "and the heave and is turned inside out at 0.17 B: a Lagrangian cell cannot follow a punch "
       "edge (docs/theory.md §9.12)";
-  static const std::string lateral_inertia =
-      "the 2D bar's lateral inertia, left out by the uniaxial-stress reference: the sharp front "
-      "rings the width's thickness-stretch mode and disperses; quick variant 0.025 (front) and "
-      "0.10 (history), full 0.021 and 0.105, 0.028 and 0.109 at half the spacing, 0.016 and "
-      "0.036 there with nu = 0 (cases/ld-bar2d-viscoplastic/README.md)";
   static const std::string no_slip_fold =
       "the collapsing block's bottom layer of cells, between the nodes held by the rough base and "
       "the flow over them, is sheared flat and folds while the front is still moving (at 1.5 s, "
@@ -64,8 +59,6 @@ const std::map<std::string, std::map<std::string, std::string>>& known_open_chec
          "the finite-strain effect of the large-deformation model (the compressed bar's stiffer "
          "current configuration and faster Lagrangian fronts) is 0.011 Z V0 over the quick "
          "run's four transits, linear in V0, above the 0.01 asked (docs/theory.md §9.6)"}}},
-      {"ld-bar2d-viscoplastic",
-       {{"front_speed_error", lateral_inertia}, {"history_l1_error", lateral_inertia}}},
       {"ld-cantilever-plate",
        {{"period_error",
          "the quick variant's finest lattice has 4 cells across the plate: its period is 5 % "

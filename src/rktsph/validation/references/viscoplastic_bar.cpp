@@ -1,6 +1,7 @@
 #include "rktsph/validation/references/viscoplastic_bar.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -25,12 +26,21 @@ ViscoplasticBar::ViscoplasticBar(ViscoplasticBarParameters parameters)
           "ViscoplasticBar: residual_yield_fraction must be in (0, 1]");
   require(p.cells >= 2, "ViscoplasticBar: at least 2 cells");
   require(static_cast<bool>(p.right_velocity), "ViscoplasticBar: right_velocity is missing");
+  const bool rollers = p.section == ViscoplasticBarParameters::Section::PlaneStressLateralRollers;
+  require(!rollers || (p.poisson_ratio >= 0.0 && p.poisson_ratio < 0.5),
+          "ViscoplasticBar: with lateral rollers the Poisson ratio must be in [0, 0.5)");
+  require(!rollers || p.left_end == ViscoplasticBarParameters::LeftEnd::Fixed,
+          "ViscoplasticBar: with lateral rollers the left end must be fixed");
 
-  wave_speed_ = std::sqrt(p.young_modulus / p.density);
+  // The modulus of the long wave: E in uniaxial stress, M = E/(1 - nu^2) with rollers.
+  const double modulus =
+      rollers ? p.young_modulus / (1.0 - p.poisson_ratio * p.poisson_ratio) : p.young_modulus;
+  wave_speed_ = std::sqrt(modulus / p.density);
   impedance_ = p.density * wave_speed_;
   grid_spacing_ = p.length / p.cells;
   time_step_ = grid_spacing_ / wave_speed_;
-  source_weight_ = 0.5 * p.young_modulus * time_step_;
+  source_weight_ = 0.5 * modulus * time_step_;
+  lateral_weight_ = 0.5 * p.young_modulus * time_step_;
   residual_yield_ = p.residual_yield_fraction * p.initial_yield_stress;
 
   const std::size_t nodes = static_cast<std::size_t>(p.cells) + 1;
@@ -42,6 +52,102 @@ ViscoplasticBar::ViscoplasticBar(ViscoplasticBarParameters parameters)
   next_stress_.assign(nodes, 0.0);
   next_velocity_.assign(nodes, 0.0);
   next_rate_.assign(nodes, 0.0);
+  if (rollers)
+    for (auto* field : {&axial_rate_, &lateral_rate_, &equivalent_rate_, &lateral_offset_,
+                        &next_axial_rate_, &next_lateral_rate_, &next_equivalent_rate_})
+      field->assign(nodes, 0.0);
+}
+
+std::vector<double> ViscoplasticBar::lateral_stress() const {
+  std::vector<double> lateral(stress_.size(), 0.0);
+  if (!lateral_offset_.empty())
+    for (std::size_t i = 0; i < lateral.size(); ++i)
+      lateral[i] = parameters_.poisson_ratio * stress_[i] + lateral_offset_[i];
+  return lateral;
+}
+
+double ViscoplasticBar::roller_plastic_rate(int node, double trial_stress) {
+  // Unknowns u = (a, b, e): the new ε̇_xx, ε̇_yy and equivalent rate γφ. With them
+  //   σ_xx = σ_trial − k_M (a + ν b),  σ_yy = ν σ_xx + τ_known − k_E b,
+  // and the Von Mises flow of (σ_xx, σ_yy, 0), ε̇ = e (3/2) s/q, must give back a and b, and
+  // e = γ ⟨q/Y − 1⟩^N with Y at the new (trapezoidal) equivalent rate.
+  const ViscoplasticBarParameters& p = parameters_;
+  const auto i = static_cast<std::size_t>(node);
+  const double nu = p.poisson_ratio;
+  const double tau_known = lateral_offset_[i] - lateral_weight_ * lateral_rate_[i];
+  const double yield_slope = p.hardening_modulus * 0.5 * time_step_;
+  using Vector3 = std::array<double, 3>;
+  const auto residual = [&](const Vector3& u) {
+    const double sx = trial_stress - source_weight_ * (u[0] + nu * u[1]);
+    const double sy = nu * sx + tau_known - lateral_weight_ * u[1];
+    const double q = std::sqrt(std::max(0.0, sx * sx - sx * sy + sy * sy));
+    const double yield =
+        std::max(residual_yield_, yield_[i] + yield_slope * (equivalent_rate_[i] + u[2]));
+    const double overstress = q / yield - 1.0;
+    const double flow = overstress > 0.0 ? p.fluidity * std::pow(overstress, p.exponent) : 0.0;
+    const double scale = q > 0.0 ? u[2] / (2.0 * q) : 0.0;
+    return Vector3{u[0] - scale * (2.0 * sx - sy), u[1] - scale * (2.0 * sy - sx), u[2] - flow};
+  };
+  const auto norm = [](const Vector3& r) { return std::hypot(r[0], r[1], r[2]); };
+
+  Vector3 u{0.0, 0.0, 0.0};
+  Vector3 r = residual(u);
+  if (r[2] >= 0.0) {  // no overstress at the trial state: elastic
+    next_axial_rate_[i] = next_lateral_rate_[i] = next_equivalent_rate_[i] = 0.0;
+    return 0.0;
+  }
+  const double target = 1e-13 * p.fluidity;  // rates are O(γ) and above
+  for (int iteration = 0; iteration < 100 && norm(r) > target; ++iteration) {
+    // Newton with a finite-difference Jacobian; the step is halved until |r| decreases.
+    double jacobian[3][3];
+    for (int c = 0; c < 3; ++c) {
+      Vector3 shifted = u;
+      const double delta =
+          1e-7 * std::max({std::abs(u[0]), std::abs(u[1]), std::abs(u[2]), p.fluidity * 1e-3});
+      shifted[static_cast<std::size_t>(c)] += delta;
+      const Vector3 rs = residual(shifted);
+      for (int row = 0; row < 3; ++row)
+        jacobian[row][c] =
+            (rs[static_cast<std::size_t>(row)] - r[static_cast<std::size_t>(row)]) / delta;
+    }
+    const auto det3 = [](const double m[3][3]) {
+      return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+             m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+             m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    };
+    const double det = det3(jacobian);
+    if (!(std::abs(det) > 0.0)) break;
+    Vector3 step{};
+    for (int c = 0; c < 3; ++c) {  // Cramer's rule for J step = -r
+      double replaced[3][3];
+      for (int row = 0; row < 3; ++row)
+        for (int k = 0; k < 3; ++k)
+          replaced[row][k] = k == c ? -r[static_cast<std::size_t>(row)] : jacobian[row][k];
+      step[static_cast<std::size_t>(c)] = det3(replaced) / det;
+    }
+    double length = 1.0;
+    Vector3 next{}, next_r{};
+    for (int halving = 0; halving < 40; ++halving, length *= 0.5) {
+      for (std::size_t k = 0; k < 3; ++k)
+        next[k] = u[k] + length * step[k];
+      next[2] = std::max(next[2], 0.0);
+      next_r = residual(next);
+      if (norm(next_r) < norm(r)) break;
+    }
+    u = next;
+    r = next_r;
+  }
+  if (!(norm(r) <= 1e-9 * std::max(1.0, std::abs(u[2])) * p.fluidity))
+    throw std::runtime_error("ViscoplasticBar: the plastic rates of a node did not converge");
+  next_axial_rate_[i] = u[0];
+  next_lateral_rate_[i] = u[1];
+  next_equivalent_rate_[i] = u[2];
+  return u[0] + nu * u[1];
+}
+
+double ViscoplasticBar::new_source_rate(int node, double trial_stress) {
+  return lateral_offset_.empty() ? plastic_rate(node, trial_stress)
+                                 : roller_plastic_rate(node, trial_stress);
 }
 
 double ViscoplasticBar::plastic_rate(int node, double trial_stress) const {
@@ -107,7 +213,7 @@ void ViscoplasticBar::step() {
   {
     const double arriving = stress_[1] + z * velocity_[1] - k * plastic_rate_[1];
     if (p.left_end == ViscoplasticBarParameters::LeftEnd::Fixed) {
-      const double rate = plastic_rate(0, arriving);
+      const double rate = new_source_rate(0, arriving);
       next_rate_[0] = rate;
       next_stress_[0] = arriving - k * rate;
       next_velocity_[0] = 0.0;
@@ -123,7 +229,7 @@ void ViscoplasticBar::step() {
     const double right_going = stress_[i - 1] - z * velocity_[i - 1] - k * plastic_rate_[i - 1];
     const double left_going = stress_[i + 1] + z * velocity_[i + 1] - k * plastic_rate_[i + 1];
     const double trial = 0.5 * (right_going + left_going);
-    const double rate = plastic_rate(i, trial);
+    const double rate = new_source_rate(i, trial);
     next_rate_[i] = rate;
     next_stress_[i] = trial - k * rate;
     // The new-time source −k·rate enters both invariants equally and cancels in v.
@@ -134,14 +240,26 @@ void ViscoplasticBar::step() {
     const double imposed = p.right_velocity(new_time);
     const double trial =
         stress_[last - 1] - z * velocity_[last - 1] - k * plastic_rate_[last - 1] + z * imposed;
-    const double rate = plastic_rate(last, trial);
+    const double rate = new_source_rate(last, trial);
     next_rate_[last] = rate;
     next_stress_[last] = trial - k * rate;
     next_velocity_[last] = imposed;
   }
 
   const double half_step = 0.5 * time_step_;
-  for (int i = 0; i <= last; ++i) {
+  if (!lateral_offset_.empty()) {  // lateral rollers: ε_xx, Y from the equivalent rate, τ
+    for (std::size_t i = 0; i < stress_.size(); ++i) {
+      plastic_strain_[i] += half_step * (axial_rate_[i] + next_axial_rate_[i]);
+      yield_[i] = std::max(residual_yield_,
+                           yield_[i] + p.hardening_modulus * half_step *
+                                           (equivalent_rate_[i] + next_equivalent_rate_[i]));
+      lateral_offset_[i] -= lateral_weight_ * (lateral_rate_[i] + next_lateral_rate_[i]);
+    }
+    std::swap(axial_rate_, next_axial_rate_);
+    std::swap(lateral_rate_, next_lateral_rate_);
+    std::swap(equivalent_rate_, next_equivalent_rate_);
+  }
+  for (int i = 0; i <= last && lateral_offset_.empty(); ++i) {
     const double rate_sum = plastic_rate_[i] + next_rate_[i];
     const double rate_magnitude_sum = std::abs(plastic_rate_[i]) + std::abs(next_rate_[i]);
     plastic_strain_[i] += half_step * rate_sum;

@@ -9,6 +9,14 @@
 // elastic fronts travel without smearing. The source is integrated by the trapezoidal rule, which
 // makes the update implicit in the new rate at each node; that scalar equation is solved exactly
 // (safeguarded Newton), so the scheme is second order where the solution is smooth.
+//
+// With Section::PlaneStressLateralRollers the bar is a 2D plane-stress strip whose lateral faces
+// are on rollers (ε_yy = 0, σ_zz = 0; docs/theory.md §9.9): the long wave is then exactly 1D with
+// the plane-stress modulus M = E/(1 − ν²) and c = √(M/ρ), and each node also carries the lateral
+// stress σ_yy = νσ_xx + τ, where τ changes only by plastic flow, τ_t = −E ε̇_yy (eq. 9.10). The
+// Von Mises flow of (σ_xx, σ_yy, 0) gives ε̇_xx and ε̇_yy; the invariants change by
+// −M(ε̇_xx + ν ε̇_yy) dt, and the two new rates of a node are solved together (Newton on two
+// unknowns, with a backtracking line search). "plastic_strain" is then ε_xx of the flow.
 #pragma once
 
 #include <functional>
@@ -18,6 +26,7 @@ namespace rktsph::references {
 
 struct ViscoplasticBarParameters {
   enum class LeftEnd { Fixed, Free };
+  enum class Section { UniaxialStress, PlaneStressLateralRollers };
 
   double length = 0.0;                ///< L [m]
   double young_modulus = 0.0;         ///< E [Pa]
@@ -29,6 +38,8 @@ struct ViscoplasticBarParameters {
   /// Y never drops below this fraction of Y0; docs/theory.md §8.3 uses 0.05.
   double residual_yield_fraction = 0.05;
   LeftEnd left_end = LeftEnd::Fixed;
+  Section section = Section::UniaxialStress;
+  double poisson_ratio = 0.0;  ///< ν, used by Section::PlaneStressLateralRollers only
   /// Imposed velocity of the right end x = L [m/s] against time; called for t > 0.
   std::function<double(double)> right_velocity;
   int cells = 400;
@@ -51,7 +62,7 @@ class ViscoplasticBar {
   /// Throws std::invalid_argument if a parameter is out of range or right_velocity is missing.
   explicit ViscoplasticBar(ViscoplasticBarParameters parameters);
 
-  double wave_speed() const { return wave_speed_; }  ///< c = √(E/ρ)
+  double wave_speed() const { return wave_speed_; }  ///< c = √(E/ρ), or √(M/ρ) with rollers
   double impedance() const { return impedance_; }    ///< Z = ρc
   double grid_spacing() const { return grid_spacing_; }
   double time_step() const { return time_step_; }  ///< Δt = Δx/c
@@ -71,6 +82,8 @@ class ViscoplasticBar {
   const std::vector<double>& plastic_strain() const { return plastic_strain_; }
   const std::vector<double>& plastic_strain_rate() const { return plastic_rate_; }
   const std::vector<double>& yield_stress() const { return yield_; }
+  /// σ_yy of each node (zero in uniaxial stress).
+  std::vector<double> lateral_stress() const;
 
   /// Fields at 0 ≤ x ≤ L, linear between nodes.
   ViscoplasticBarPoint at(double x) const;
@@ -78,6 +91,11 @@ class ViscoplasticBar {
  private:
   /// Solves e = ε̇_vp(σ_trial − k e) at `node` and returns the new plastic strain rate.
   double plastic_rate(int node, double trial_stress) const;
+  /// The same with lateral rollers: the new ε̇_xx + ν ε̇_yy at `node`; the node's new ε̇_xx, ε̇_yy
+  /// and equivalent rate are left in next_axial_rate_, next_lateral_rate_, next_equivalent_rate_.
+  double roller_plastic_rate(int node, double trial_stress);
+  /// The new-time source rate of `node` for the invariants, after either solve.
+  double new_source_rate(int node, double trial_stress);
 
   ViscoplasticBarParameters parameters_;
   double wave_speed_;
@@ -89,6 +107,10 @@ class ViscoplasticBar {
   long steps_ = 0;
   std::vector<double> stress_, velocity_, plastic_strain_, plastic_rate_, yield_;
   std::vector<double> next_stress_, next_velocity_, next_rate_;
+  // Lateral rollers only: ε̇_xx, ε̇_yy, the equivalent rate γφ and τ = σ_yy − νσ_xx of each node.
+  double lateral_weight_ = 0.0;  ///< EΔt/2, the trapezoidal weight of ε̇_yy in τ
+  std::vector<double> axial_rate_, lateral_rate_, equivalent_rate_, lateral_offset_;
+  std::vector<double> next_axial_rate_, next_lateral_rate_, next_equivalent_rate_;
 };
 
 /// Runs a fresh bar to `end_time` and records the fields at x after every step.
