@@ -39,7 +39,6 @@ namespace {
 
 // As in cases/ld-strip-footing-bearing/case.yaml.
 constexpr char kCase[] = "ld-strip-footing-bearing";
-constexpr double kYieldStress = 1.0e5;
 constexpr double kFootingWidth = 4.0;  // B; the half model carries 0 <= x <= B/2
 constexpr double kHalfWidth = 0.5 * kFootingWidth;
 constexpr double kSurface = 6.0;
@@ -153,8 +152,9 @@ std::vector<CheckResult> validate_ld_strip_footing_bearing(const ValidationConte
   const std::filesystem::path& directory = run.directory;
   const FootingHistory history =
       read_footing_history(directory, footing_nodes, "stress_yy", "edge", "centre");
-  const double capacity = references::prandtl_bearing_capacity(
-      references::von_mises_plane_strain_cohesion(kYieldStress));
+  const double capacity =
+      references::prandtl_bearing_capacity(references::von_mises_plane_strain_cohesion(
+          material_parameter(description, "soil", "yield_stress")));
   const std::optional<PressureLine> line = fit_plateau(history);
   if (context.report) {
     // The second resolution of the report (full runs only): the quick variant's lattice.

@@ -38,14 +38,13 @@ namespace {
 
 // As in cases/ld-vertical-cut-footing/case.yaml.
 constexpr char kCase[] = "ld-vertical-cut-footing";
-constexpr double kYieldStress = 1.0e5;
 constexpr double kFootingWidth = 2.0;
 constexpr double kFootingLeft = 6.0;  // inner footing edge; the crest is at x = 8 m, y = 6 m
 constexpr double kCrestY = 6.0;
 // The plateau: settlements from 0.1 B (well past the elastic 10 mm) to 0.3 B.
 constexpr double kPlateauFrom = 0.1, kPlateauTo = 0.3;
 // The softening run: Y drops at H = -5e5 Pa per unit eps_vp to 0.6 Y.
-constexpr double kSofteningModulus = -5.0e5, kResidualYield = 0.6 * kYieldStress;
+constexpr double kSofteningModulus = -5.0e5, kResidualFraction = 0.6;  // of the case's Y
 // Quick variant: B/dx = 8 instead of 16.
 constexpr double kQuickSpacing = 0.25;
 // The state of the run is sampled every kSampling seconds of simulated time (0.025 B of
@@ -81,8 +80,8 @@ BandMeasurement measure_wedge_band(const Simulation& simulation) {
 void report_vertical_cut(ValidationReport& report, const FootingHistory& perfect,
                          const FootingHistory& softening, const FootingHistory* coarse,
                          double spacing, double limit, double plateau, const BandMeasurement& band,
-                         const NodeLine& contact, double contact_ratio) {
-  const double cohesion = references::von_mises_plane_strain_cohesion(kYieldStress);
+                         const NodeLine& contact, double contact_ratio, double yield_stress) {
+  const double cohesion = references::von_mises_plane_strain_cohesion(yield_stress);
   const double end =
       std::max(perfect.settlement.back(), softening.settlement.back()) / kFootingWidth;
   report.describe(fmt::format(
@@ -97,9 +96,9 @@ void report_vertical_cut(ValidationReport& report, const FootingHistory& perfect
       "= {:.1f} kPa.",
       kFootingWidth, spacing, perfect.settlement.back() / kFootingWidth, 1e-3 * limit, kPlateauFrom,
       kPlateauTo, 1e-3 * plateau, kPlateauFrom, band.primary.angle_deg, 1e-3 * kSofteningModulus,
-      kResidualYield / kYieldStress,
+      kResidualFraction,
       1e-3 * references::footing_on_cut_limit_pressure(
-                 references::von_mises_plane_strain_cohesion(kResidualYield))));
+                 references::von_mises_plane_strain_cohesion(kResidualFraction * yield_stress))));
   Figure load{"load_settlement",
               "Footing pressure against settlement (as thesis Fig. 5-48 to 5-50)",
               "settlement s / B [-]",
@@ -112,9 +111,8 @@ void report_vertical_cut(ValidationReport& report, const FootingHistory& perfect
         fmt::format("SPH, no hardening, dx = {:g} m", kQuickSpacing), *coarse, kFootingWidth));
   load.series.push_back(
       sample_curve("2c = 2 Y / sqrt(3)", 0.0, end, 2, [&](double) { return 1e-3 * limit; }));
-  load.series.push_back(sample_curve("2 c_res", 0.0, end, 2, [&](double) {
-    return 1e-3 * limit * kResidualYield / kYieldStress;
-  }));
+  load.series.push_back(sample_curve("2 c_res", 0.0, end, 2,
+                                     [&](double) { return 1e-3 * limit * kResidualFraction; }));
   report.add_figure(std::move(load));
   Series measured{"SPH footing nodes", contact.x, {}, "line"};
   for (double p : contact.value)
@@ -145,6 +143,7 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
   if (context.quick) overrides.push_back({"geometry.spacing", fmt::format("{}", kQuickSpacing)});
   const CaseDescription description = load_bundled_case(context, kCase, overrides);
   const double spacing = description.geometry.spacing;
+  const double yield_stress = material_parameter(description, "soil", "yield_stress");
   const int footing_nodes = static_cast<int>(std::lround(kFootingWidth / spacing)) + 1;
 
   // The band at s = 0.1 B, the contact pressure at every field output on the plateau.
@@ -161,7 +160,8 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
   const FootingHistory perfect =
       read_footing_history(perfect_run.directory, footing_nodes, "stress_yy", "inner", "crest");
   overrides.push_back({"materials.soil.hardening_modulus", fmt::format("{}", kSofteningModulus)});
-  overrides.push_back({"materials.soil.minimum_yield_stress", fmt::format("{}", kResidualYield)});
+  overrides.push_back({"materials.soil.minimum_yield_stress",
+                       fmt::format("{:.17g}", kResidualFraction * yield_stress)});
   const ValidationRun softening_run =
       run_allowing_failure(context, load_bundled_case(context, kCase, overrides),
                            context.quick ? "quick_softening" : "softening");
@@ -170,7 +170,7 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
   if (!band) throw RunError(fmt::format("{}: the band was not measured", kCase));
 
   const double limit = references::footing_on_cut_limit_pressure(
-      references::von_mises_plane_strain_cohesion(kYieldStress));
+      references::von_mises_plane_strain_cohesion(yield_stress));
   const double plateau = plateau_pressure(perfect);
   if (context.report) {
     // The second resolution of the report (full runs only): the quick variant's lattice.
@@ -179,7 +179,7 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
       coarse = run_coarse_footing(context, kCase, kQuickSpacing, kFootingWidth, "stress_yy",
                                   "inner", "crest");
     report_vertical_cut(*context.report, perfect, softening, coarse ? &*coarse : nullptr, spacing,
-                        limit, plateau, *band, contact.last, contact.largest_ratio);
+                        limit, plateau, *band, contact.last, contact.largest_ratio, yield_stress);
     for (const ValidationRun* run : {&perfect_run, &softening_run})
       if (!run->completed)
         context.report->describe(context.report->description() + " A run stopped early (" +
