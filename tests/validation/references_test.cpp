@@ -657,6 +657,39 @@ TEST(ViscoplasticBarTest, LateralRollersFrontFollowsTheDecayLawOfItsStressState)
   EXPECT_GT(std::abs(coarse) / std::abs(fine), 3.0);
 }
 
+// The rates of a node are solved for every fluidity, exponent (N < 1 has an infinite slope at the
+// yield surface) and hardening or softening: until the front reaches the fixed end the bar's
+// stress stays finite, compressive and below the elastic impact stress Z_M |V0|.
+TEST(ViscoplasticBarTest, LateralRollersSolveEveryNodeAcrossFluiditiesExponentsAndHardening) {
+  for (const double fluidity : {1.0, 100.0, 1e4})
+    for (const double exponent : {0.5, 1.0, 2.0})
+      for (const double hardening : {-2e6, 0.0, 2e6}) {
+        ViscoplasticBarParameters p;
+        p.length = 2.0;
+        p.young_modulus = 1e8;
+        p.density = 2000.0;
+        p.initial_yield_stress = 1e5;
+        p.fluidity = fluidity;
+        p.exponent = exponent;
+        p.hardening_modulus = hardening;
+        p.section = ViscoplasticBarParameters::Section::PlaneStressLateralRollers;
+        p.poisson_ratio = 0.3;
+        p.right_velocity = ramp_to(-1.0, 1e-4);
+        p.cells = 200;
+        ViscoplasticBar bar(p);
+        const double impact = bar.impedance() * 1.0;
+        ASSERT_NO_THROW(bar.advance_to(0.9 * p.length / bar.wave_speed()))
+            << fluidity << " " << exponent << " " << hardening;
+        const std::vector<double> lateral = bar.lateral_stress();
+        for (int node = 0; node < bar.node_count(); ++node) {
+          const double xx = bar.stress()[static_cast<std::size_t>(node)];
+          ASSERT_TRUE(std::isfinite(xx) && std::isfinite(lateral[static_cast<std::size_t>(node)]));
+          EXPECT_LE(xx, 1e-9 * impact) << fluidity << " " << exponent << " " << hardening;
+          EXPECT_GE(xx, -impact * (1.0 + 1e-9)) << fluidity << " " << exponent << " " << hardening;
+        }
+      }
+}
+
 TEST(ViscoplasticBarTest, DecayLawFunction) {
   // Closed form by hand: after t = 2Y0/(Eγ)·ln 2 the overstress halves; elastic fronts are kept.
   const double half_life = 2.0 * 1e5 / (1e8 * 1.0) * std::log(2.0);

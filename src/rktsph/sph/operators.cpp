@@ -332,9 +332,8 @@ bool compute_row(int dimension, const Vector& target, std::span<const StencilSou
 
 namespace {
 
-// Scratch for one row whose weights are not kept (row_is_regular) or whose gradient weights are
-// not kept (an interpolation-only table): on the stack for the stencils of the step and the
-// filter (up to ~50 entries with mirror images), on the heap beyond.
+// Scratch for one row whose weights are not kept (row_is_regular): on the stack for the stencils
+// of the step and the filter (up to ~50 entries with mirror images), on the heap beyond.
 class RowScratch {
  public:
   explicit RowScratch(std::size_t size) {
@@ -485,12 +484,18 @@ void size_table(int dimension, TableWeights weights, WeightTable& table,
   }
   const bool keep_gradient = weights == TableWeights::InterpolationAndGradient;
   table.dimension = dimension;
-  // resize, not clear + resize: a table of the same size is neither freed nor refilled.
-  table.source.resize(entries);
-  table.reflection.resize(entries);
-  table.interpolation.resize(entries);
-  for (auto& g : table.gradient)
-    g.resize(keep_gradient ? entries : 0);
+  workspace.failure = nullptr;
+  try {
+    // resize, not clear + resize: a table of the same size is neither freed nor refilled.
+    table.source.resize(entries);
+    table.reflection.resize(entries);
+    table.interpolation.resize(entries);
+    for (auto& g : table.gradient)
+      g.resize(keep_gradient ? entries : 0);
+  } catch (...) {  // thrown inside a parallel region it would terminate the program
+    workspace.failure = std::current_exception();
+    table.source.clear();  // place() then copies nothing
+  }
   table.has_gradient = keep_gradient;
   table.has_reflections = reflections;
   table.weight_start.clear();
@@ -499,6 +504,7 @@ void size_table(int dimension, TableWeights weights, WeightTable& table,
 
 void place(TableWeights weights, std::size_t first, std::size_t last, const RowBlock& block,
            WeightTable& table) {
+  if (block.entries > 0 && table.source.size() < block.offset + block.entries) return;  // failed
   const auto offset = static_cast<std::int64_t>(block.offset);
   for (std::size_t row = first; row < last; ++row)
     table.row_start[row + 1] += offset;
@@ -509,6 +515,14 @@ void place(TableWeights weights, std::size_t first, std::size_t last, const RowB
   if (weights == TableWeights::InterpolationAndGradient)
     for (std::size_t a = 0; a < 3; ++a)
       std::copy_n(block.gradient[a].data(), n, table.gradient[a].data() + block.offset);
+}
+
+void rethrow(OperatorWorkspace& workspace) {
+  if (workspace.failure) {
+    const std::exception_ptr failure = workspace.failure;
+    workspace.failure = nullptr;
+    std::rethrow_exception(failure);
+  }
 }
 
 }  // namespace row_blocks

@@ -12,6 +12,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <exception>
 #include <span>
 #include <string>
 #include <vector>
@@ -181,8 +182,9 @@ struct StencilReport {
 /// its weights computed at once into the block's arrays, which are then copied into the table at
 /// the block's offset. The stencil stays in the cache between the gather and the weights, and no
 /// row keeps a buffer of its own. The arrays only grow, so a rebuild allocates nothing once they
-/// have reached their size.
-struct RowBlock {
+/// have reached their size. Aligned to a cache line, so that one thread's counters, written every
+/// row, never share a line with the next thread's block.
+struct alignas(64) RowBlock {
   std::vector<StencilSource> stencil;
   std::vector<std::int32_t> source;
   std::vector<std::uint8_t> reflection;
@@ -199,6 +201,7 @@ struct RowBlock {
 struct OperatorWorkspace {
   std::vector<RowBlock> blocks;       ///< per thread
   std::vector<std::uint8_t> regular;  ///< per row
+  std::exception_ptr failure;         ///< of the last build's sizing (build_rows rethrows it)
 };
 
 /// Buffers of share_row_weights (docs/theory.md §3.3), kept between builds.
@@ -256,12 +259,17 @@ RowBlock& own(std::size_t row_count, OperatorWorkspace& workspace, std::size_t& 
 /// block's entries so far.
 void compute(int dimension, const OperatorOptions& options, const RowTarget& target,
              std::size_t row, WeightTable& table, OperatorWorkspace& workspace, RowBlock& block);
-/// After every block is computed (one thread): the blocks' offsets and the table's size.
+/// After every block is computed (one thread): the blocks' offsets and the table's size. A
+/// failure to size the table (out of memory) is kept in the workspace, not thrown inside the
+/// parallel region, and the blocks are then not placed.
 void size_table(int dimension, TableWeights weights, WeightTable& table,
                 OperatorWorkspace& workspace);
 /// Each thread: its rows' starts shifted by the block's offset, its entries copied in.
+/// Nothing if sizing failed.
 void place(TableWeights weights, std::size_t first, std::size_t last, const RowBlock& block,
            WeightTable& table);
+/// After the parallel region: throws the failure size_table kept, if any.
+void rethrow(OperatorWorkspace& workspace);
 }  // namespace row_blocks
 
 /// The row machinery of the two builders, for tables whose rows need stencils of their own (the
@@ -288,6 +296,7 @@ void build_rows(std::size_t row_count, int dimension, const OperatorOptions& opt
     row_blocks::size_table(dimension, weights, table, workspace);
     row_blocks::place(weights, first, last, block, table);
   }
+  row_blocks::rethrow(workspace);
 }
 
 /// Frees the gradient weights of a table used only for interpolation (the hourglass filter).

@@ -1,7 +1,6 @@
 #include "rktsph/validation/references/viscoplastic_bar.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -67,82 +66,142 @@ std::vector<double> ViscoplasticBar::lateral_stress() const {
 }
 
 double ViscoplasticBar::roller_plastic_rate(int node, double trial_stress) {
-  // Unknowns u = (a, b, e): the new ε̇_xx, ε̇_yy and equivalent rate γφ. With them
-  //   σ_xx = σ_trial − k_M (a + ν b),  σ_yy = ν σ_xx + τ_known − k_E b,
-  // and the Von Mises flow of (σ_xx, σ_yy, 0), ε̇ = e (3/2) s/q, must give back a and b, and
-  // e = γ ⟨q/Y − 1⟩^N with Y at the new (trapezoidal) equivalent rate.
+  // The new equivalent rate e = γφ ≥ 0 is bracketed and found by regula falsi (Illinois), as
+  // plastic_rate finds its magnitude. For a given e, the new stress (σ_xx, σ_yy) solves (Newton on
+  // two unknowns, analytic Jacobian)
+  //   σ_xx = σ_trial − k_M e (n_xx + ν n_yy),   σ_yy − ν σ_xx = τ_known − k_E e n_yy,
+  // with n = (3/2) s/q the Von Mises direction at the new stress, so ε̇_xx = e n_xx and
+  // ε̇_yy = e n_yy. The outer residual g(e) = e − γ⟨q/Y(e) − 1⟩^N is negative at e = 0 (the trial
+  // state flows) and positive once the flow has brought q below Y (or through zero, where the
+  // inner problem has no solution: g = e there).
   const ViscoplasticBarParameters& p = parameters_;
   const auto i = static_cast<std::size_t>(node);
-  const double nu = p.poisson_ratio;
-  const double tau_known = lateral_offset_[i] - lateral_weight_ * lateral_rate_[i];
+  const double nu = p.poisson_ratio, km = source_weight_, ke = lateral_weight_;
+  const double tau_known = lateral_offset_[i] - ke * lateral_rate_[i];
   const double yield_slope = p.hardening_modulus * 0.5 * time_step_;
-  using Vector3 = std::array<double, 3>;
-  const auto residual = [&](const Vector3& u) {
-    const double sx = trial_stress - source_weight_ * (u[0] + nu * u[1]);
-    const double sy = nu * sx + tau_known - lateral_weight_ * u[1];
-    const double q = std::sqrt(std::max(0.0, sx * sx - sx * sy + sy * sy));
-    const double yield =
-        std::max(residual_yield_, yield_[i] + yield_slope * (equivalent_rate_[i] + u[2]));
-    const double overstress = q / yield - 1.0;
-    const double flow = overstress > 0.0 ? p.fluidity * std::pow(overstress, p.exponent) : 0.0;
-    const double scale = q > 0.0 ? u[2] / (2.0 * q) : 0.0;
-    return Vector3{u[0] - scale * (2.0 * sx - sy), u[1] - scale * (2.0 * sy - sx), u[2] - flow};
-  };
-  const auto norm = [](const Vector3& r) { return std::hypot(r[0], r[1], r[2]); };
+  const double scale = std::abs(trial_stress) + std::abs(tau_known) + yield_[i];
 
-  Vector3 u{0.0, 0.0, 0.0};
-  Vector3 r = residual(u);
-  if (r[2] >= 0.0) {  // no overstress at the trial state: elastic
+  struct State {
+    bool exists = false;  // false: the flow has taken q through zero
+    double xx = 0.0, yy = 0.0, q = 0.0, nxx = 0.0, nyy = 0.0;
+  };
+  const auto direction = [](State& s) {
+    s.q = std::sqrt(std::max(0.0, s.xx * s.xx - s.xx * s.yy + s.yy * s.yy));
+    if (s.q > 0.0) {
+      s.nxx = (2.0 * s.xx - s.yy) / (2.0 * s.q);
+      s.nyy = (2.0 * s.yy - s.xx) / (2.0 * s.q);
+    }
+  };
+  State guess;
+  guess.xx = trial_stress;
+  guess.yy = nu * trial_stress + tau_known;
+  direction(guess);
+  const State trial = guess;
+  const auto stress_at = [&](double e) {
+    State s = guess.exists ? guess : trial;
+    const auto residual = [&](const State& t, double& f1, double& f2) {
+      f1 = t.xx - trial_stress + km * e * (t.nxx + nu * t.nyy);
+      f2 = t.yy - nu * t.xx - tau_known + ke * e * t.nyy;
+    };
+    double f1 = 0.0, f2 = 0.0;
+    residual(s, f1, f2);
+    for (int iteration = 0; iteration < 100; ++iteration) {
+      if (std::hypot(f1, f2) <= 1e-13 * scale) {
+        s.exists = true;
+        return s;
+      }
+      if (!(s.q > 1e-12 * scale)) break;
+      // d n_xx/d s_xx = (1 − n_xx²)/q, d n_xx/d s_yy = d n_yy/d s_xx = −(1/2 + n_xx n_yy)/q,
+      // d n_yy/d s_yy = (1 − n_yy²)/q.
+      const double dxx = (1.0 - s.nxx * s.nxx) / s.q, dyy = (1.0 - s.nyy * s.nyy) / s.q;
+      const double dxy = -(0.5 + s.nxx * s.nyy) / s.q;
+      const double j11 = 1.0 + km * e * (dxx + nu * dxy), j12 = km * e * (dxy + nu * dyy);
+      const double j21 = -nu + ke * e * dxy, j22 = 1.0 + ke * e * dyy;
+      const double det = j11 * j22 - j12 * j21;
+      if (!(std::abs(det) > 0.0)) break;
+      const double step_xx = -(j22 * f1 - j12 * f2) / det;
+      const double step_yy = -(j11 * f2 - j21 * f1) / det;
+      bool decreased = false;
+      for (double length = 1.0; length > 1e-12; length *= 0.5) {
+        State next = s;
+        next.xx = s.xx + length * step_xx;
+        next.yy = s.yy + length * step_yy;
+        direction(next);
+        double g1 = 0.0, g2 = 0.0;
+        residual(next, g1, g2);
+        if (std::hypot(g1, g2) < std::hypot(f1, f2)) {
+          s = next;
+          f1 = g1;
+          f2 = g2;
+          decreased = true;
+          break;
+        }
+      }
+      if (!decreased) break;
+    }
+    return State{};  // no stress with q > 0 answers this rate
+  };
+  State at_root;
+  const auto outer = [&](double e) {
+    const State s = stress_at(e);
+    if (!s.exists) return e;
+    guess = s;
+    at_root = s;
+    const double yield =
+        std::max(residual_yield_, yield_[i] + yield_slope * (equivalent_rate_[i] + e));
+    const double overstress = s.q / yield - 1.0;
+    return e - (overstress > 0.0 ? p.fluidity * std::pow(overstress, p.exponent) : 0.0);
+  };
+
+  double low = 0.0, g_low = outer(0.0);
+  if (g_low >= 0.0) {  // no overstress at the trial state: elastic
     next_axial_rate_[i] = next_lateral_rate_[i] = next_equivalent_rate_[i] = 0.0;
     return 0.0;
   }
-  const double target = 1e-13 * p.fluidity;  // rates are O(γ) and above
-  for (int iteration = 0; iteration < 100 && norm(r) > target; ++iteration) {
-    // Newton with a finite-difference Jacobian; the step is halved until |r| decreases.
-    double jacobian[3][3];
-    for (int c = 0; c < 3; ++c) {
-      Vector3 shifted = u;
-      const double delta =
-          1e-7 * std::max({std::abs(u[0]), std::abs(u[1]), std::abs(u[2]), p.fluidity * 1e-3});
-      shifted[static_cast<std::size_t>(c)] += delta;
-      const Vector3 rs = residual(shifted);
-      for (int row = 0; row < 3; ++row)
-        jacobian[row][c] =
-            (rs[static_cast<std::size_t>(row)] - r[static_cast<std::size_t>(row)]) / delta;
-    }
-    const auto det3 = [](const double m[3][3]) {
-      return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-             m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-             m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-    };
-    const double det = det3(jacobian);
-    if (!(std::abs(det) > 0.0)) break;
-    Vector3 step{};
-    for (int c = 0; c < 3; ++c) {  // Cramer's rule for J step = -r
-      double replaced[3][3];
-      for (int row = 0; row < 3; ++row)
-        for (int k = 0; k < 3; ++k)
-          replaced[row][k] = k == c ? -r[static_cast<std::size_t>(row)] : jacobian[row][k];
-      step[static_cast<std::size_t>(c)] = det3(replaced) / det;
-    }
-    double length = 1.0;
-    Vector3 next{}, next_r{};
-    for (int halving = 0; halving < 40; ++halving, length *= 0.5) {
-      for (std::size_t k = 0; k < 3; ++k)
-        next[k] = u[k] + length * step[k];
-      next[2] = std::max(next[2], 0.0);
-      next_r = residual(next);
-      if (norm(next_r) < norm(r)) break;
-    }
-    u = next;
-    r = next_r;
+  double high = -g_low, g_high = outer(high);         // γφ of the trial state
+  for (int doubling = 0; g_high < 0.0; ++doubling) {  // softening can raise φ as e grows
+    if (doubling == 200) throw std::runtime_error("ViscoplasticBar: no bracket for a plastic rate");
+    low = high;
+    g_low = g_high;
+    high *= 2.0;
+    g_high = outer(high);
   }
-  if (!(norm(r) <= 1e-9 * std::max(1.0, std::abs(u[2])) * p.fluidity))
+  // Regula falsi with the Illinois halving, every third step a bisection (a steep g, N < 1 near
+  // the yield surface, can stall the secant); every evaluation keeps a bracket [low, high].
+  int side = 0;
+  double e = high;
+  for (int iteration = 0; iteration < 300 && high - low > 1e-14 * high; ++iteration) {
+    e = (low * g_high - high * g_low) / (g_high - g_low);
+    if (iteration % 3 == 2 || !(e > low && e < high)) e = 0.5 * (low + high);
+    const double g = outer(e);
+    if (g == 0.0) {
+      low = high = e;
+      break;
+    }
+    if (g < 0.0) {
+      low = e;
+      g_low = g;
+      if (side == -1) g_high *= 0.5;
+      side = -1;
+    } else {
+      high = e;
+      g_high = g;
+      if (side == 1) g_low *= 0.5;
+      side = 1;
+    }
+  }
+  e = 0.5 * (low + high);
+  at_root = State{};
+  const double g = outer(e);
+  // Converged when the bracket has closed (with N < 1 g is steep at a root near the yield surface,
+  // so a small |g| cannot be asked for) or g itself vanishes.
+  const bool closed = high - low <= 1e-12 * high;
+  if (!at_root.exists || !(closed || std::abs(g) <= 1e-12 * std::max(e, p.fluidity)))
     throw std::runtime_error("ViscoplasticBar: the plastic rates of a node did not converge");
-  next_axial_rate_[i] = u[0];
-  next_lateral_rate_[i] = u[1];
-  next_equivalent_rate_[i] = u[2];
-  return u[0] + nu * u[1];
+  next_axial_rate_[i] = e * at_root.nxx;
+  next_lateral_rate_[i] = e * at_root.nyy;
+  next_equivalent_rate_[i] = e;
+  return e * (at_root.nxx + nu * at_root.nyy);
 }
 
 double ViscoplasticBar::new_source_rate(int node, double trial_stress) {

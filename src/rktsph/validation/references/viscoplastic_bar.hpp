@@ -15,8 +15,9 @@
 // the plane-stress modulus M = E/(1 − ν²) and c = √(M/ρ), and each node also carries the lateral
 // stress σ_yy = νσ_xx + τ, where τ changes only by plastic flow, τ_t = −E ε̇_yy (eq. 9.10). The
 // Von Mises flow of (σ_xx, σ_yy, 0) gives ε̇_xx and ε̇_yy; the invariants change by
-// −M(ε̇_xx + ν ε̇_yy) dt, and the two new rates of a node are solved together (Newton on two
-// unknowns, with a backtracking line search). "plastic_strain" is then ε_xx of the flow.
+// −M(ε̇_xx + ν ε̇_yy) dt. A node's new equivalent rate is bracketed and solved by regula falsi,
+// with the new stress for each trial rate by Newton on two unknowns. "plastic_strain" is then
+// ε_xx of the flow, and plastic_strain_rate() the source rate ε̇_xx + ν ε̇_yy.
 #pragma once
 
 #include <functional>
