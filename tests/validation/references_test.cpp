@@ -664,18 +664,13 @@ TEST(ViscoplasticBarTest, LateralRollersSolveEveryNodeAcrossFluiditiesExponentsA
   for (const double fluidity : {1.0, 100.0, 1e4})
     for (const double exponent : {0.5, 1.0, 2.0})
       for (const double hardening : {-2e6, 0.0, 2e6}) {
-        ViscoplasticBarParameters p;
+        ViscoplasticBarParameters p = section_4_3_bar(hardening, 200);
         p.length = 2.0;
-        p.young_modulus = 1e8;
-        p.density = 2000.0;
-        p.initial_yield_stress = 1e5;
         p.fluidity = fluidity;
         p.exponent = exponent;
-        p.hardening_modulus = hardening;
         p.section = ViscoplasticBarParameters::Section::PlaneStressLateralRollers;
         p.poisson_ratio = 0.3;
         p.right_velocity = ramp_to(-1.0, 1e-4);
-        p.cells = 200;
         ViscoplasticBar bar(p);
         const double impact = bar.impedance() * 1.0;
         ASSERT_NO_THROW(bar.advance_to(0.9 * p.length / bar.wave_speed()))
