@@ -13,6 +13,8 @@ DEB_PACKAGES := build-essential cmake libeigen3-dev libyaml-cpp-dev libcli11-dev
 DEB_REPORT_PACKAGES := python3-matplotlib chromium
 # Extra packages for the sanitizer build with the libFuzzer targets (`make fuzz`, .ci/run): clang,
 # its sanitizer and libFuzzer runtimes, and its OpenMP.
+# The peer code of `make bench-peers` (bench/README.md): PySPH, from Debian.
+DEB_PEERS_PACKAGES := python3-pysph
 # The format check of CI (`make format-check`).
 DEB_FORMAT_PACKAGES := clang-format
 DEB_FUZZ_PACKAGES := clang-14 libclang-rt-14-dev libfuzzer-14-dev libomp-14-dev
@@ -21,7 +23,7 @@ FUZZ_SECONDS ?= 60
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: deps deps-report deps-format deps-fuzz format-check configure build run test bench validate fuzz format clean
+.PHONY: deps deps-report deps-format deps-fuzz deps-peers format-check configure build run test bench bench-peers validate fuzz format clean
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
@@ -32,6 +34,11 @@ deps:
 
 deps-report: deps
 	@missing=""; for p in $(DEB_REPORT_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; fi
+
+deps-peers: deps
+	@missing=""; for p in $(DEB_PEERS_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
 	if [ -n "$$missing" ]; then \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; fi
 
@@ -61,6 +68,11 @@ test: deps build
 
 bench: deps build
 	tools/run_benchmarks.sh $(BUILD_DIR)
+
+# rktsph against PySPH on BAR-WAVE-2D S and L, interleaved in one run: accuracy and speed
+# (bench/README.md, "Against PySPH").
+bench-peers: deps-peers build
+	/usr/bin/python3 bench/peers/run_peers.py --build $(BUILD_DIR)
 
 # The validation report: every case in full, its plots and field pictures, and a check in a
 # headless browser that the page shows them. The report is checked even when a case failed, and

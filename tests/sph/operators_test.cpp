@@ -326,8 +326,6 @@ TEST(SharedWeights, InterleavedApplyMatchesApplyOperatorAndInteriorRowsShareOneS
   const std::size_t pool = shared.interpolation.size();
   share_row_weights(shared);
   EXPECT_EQ(shared.interpolation.size(), pool);
-  WeightTable with_gradient = build_cross_operator(nodes.sph_nodes, cells, options);
-  EXPECT_THROW(share_row_weights(with_gradient), std::invalid_argument);
 
   // Two fields with opposite parity under the y-mirror: one even, one odd in y.
   std::mt19937 generator(3);
@@ -358,6 +356,107 @@ TEST(SharedWeights, InterleavedApplyMatchesApplyOperatorAndInteriorRowsShareOneS
   for (std::size_t i = 0; i < targets; ++i)
     for (int f = 0; f < 2; ++f)
       EXPECT_EQ(out[2 * i + static_cast<std::size_t>(f)], expected(f, i)) << i;
+}
+
+// The step's tables share their gradient weights too (docs/theory.md §4.7): applied to fields of
+// both parities under a mirror plane, the shared table must give the unshared one's values to
+// 1e-12 and gradients to 1e-10 (weights equal to 1e-13 of the row's largest, |grad w| ~ 1/dx = 20,
+// ~20 terms), and its pools must be a small part of its entries.
+TEST(SharedWeights, GradientTablesShareAndApplyAsTheUnsharedOnes) {
+  const NodeSets nodes = rectangle_lattice(1.0, 0.5, 0.05);
+  OperatorOptions options = options_for(2, 1.3 * 0.05, 1);
+  options.mirrors = {MirrorPlane{1, 0.0}};
+  const CellList cells(nodes.stress_points,
+                       options.kernel.support_radius(options.smoothing_length));
+  const WeightTable table = build_cross_operator(nodes.sph_nodes, cells, options);
+  WeightTable shared = table;
+  share_row_weights(shared);
+  ASSERT_TRUE(shared.has_gradient);
+  ASSERT_EQ(shared.weight_start.size(), table.rows());
+  EXPECT_LT(shared.interpolation.size() * 4, shared.source.size());
+  for (int a = 0; a < 2; ++a)
+    EXPECT_EQ(shared.gradient[static_cast<std::size_t>(a)].size(), shared.interpolation.size());
+  std::mt19937 generator(5);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  FieldArray in(2, nodes.stress_points.size());
+  for (double& value : in.data())
+    value = uniform(generator);
+  const Parity parity[] = {kEven, vector_parity(1)};
+  const std::size_t targets = nodes.sph_nodes.size();
+  FieldArray values(2, targets), gradient(4, targets), shared_values(2, targets),
+      shared_gradient(4, targets);
+  apply_operator(table, in, parity, &values, &gradient);
+  apply_operator(shared, in, parity, &shared_values, &shared_gradient);
+  for (std::size_t i = 0; i < targets; ++i) {
+    for (int f = 0; f < 2; ++f)
+      EXPECT_NEAR(shared_values(f, i), values(f, i), 1e-12) << i;
+    for (int g = 0; g < 4; ++g)
+      EXPECT_NEAR(shared_gradient(g, i), gradient(g, i), 1e-10) << i;
+  }
+}
+
+// The filter's tables built and shared a chunk of rows at a time, with relative sources
+// (docs/theory.md §4.7), must hold the table built whole and then shared entry for entry (column,
+// weight, reflection bits), whatever the chunk size: chunks of 1, of 37 rows (a boundary inside
+// the lattice's rows) and one chunk of everything, which must also agree array for array.
+TEST(SharedWeights, ChunkedBuildWithRelativeSourcesHoldsTheWholeTableShared) {
+  const NodeSets nodes = rectangle_lattice(1.0, 0.5, 0.05);
+  OperatorOptions options = options_for(2, 1.3 * 0.05, 1);
+  options.mirrors = {MirrorPlane{1, 0.0}};
+  const CellList cells(nodes.stress_points,
+                       options.kernel.support_radius(options.smoothing_length));
+  WeightTable whole = build_cross_operator(nodes.sph_nodes, cells, options);
+  drop_gradients(whole);
+  share_row_weights(whole);
+  const std::size_t rows = nodes.sph_nodes.size();
+  WeightTable single;
+  for (std::size_t chunk : {rows, std::size_t{1}, std::size_t{37}}) {
+    WeightTable chunked;
+    OperatorWorkspace workspace;
+    ShareWorkspace share;
+    build_shared_cross_operator(nodes.sph_nodes, cells, options, chunked, workspace, share, chunk);
+    ASSERT_EQ(chunked.row_start, whole.row_start) << chunk;
+    EXPECT_TRUE(chunked.source.empty());
+    ASSERT_EQ(chunked.row_base.size(), rows);
+    EXPECT_EQ(chunked.row_reflects, whole.row_reflects) << chunk;
+    EXPECT_EQ(chunked.has_reflections, whole.has_reflections) << chunk;
+    EXPECT_FALSE(chunked.has_gradient);
+    std::size_t differences = 0;
+    for (std::size_t r = 0; r < rows; ++r)
+      for (auto k = static_cast<std::size_t>(whole.row_start[r]);
+           k < static_cast<std::size_t>(whole.row_start[r + 1]); ++k) {
+        const auto mine =
+            static_cast<std::size_t>(static_cast<std::int64_t>(k) + chunked.weight_offset(r));
+        const auto theirs =
+            static_cast<std::size_t>(static_cast<std::int64_t>(k) + whole.weight_offset(r));
+        differences += chunked.source_of(r, k) != whole.source_of(r, k) ||
+                       chunked.interpolation[mine] != whole.interpolation[theirs] ||
+                       chunked.reflection[mine] != whole.reflection[theirs];
+      }
+    EXPECT_EQ(differences, 0u) << chunk;
+    // A lattice's rows collapse onto a few blocks: the pools are a small part of the entries.
+    EXPECT_LT(chunked.interpolation.size() * 4, chunked.entries()) << chunk;
+    EXPECT_EQ(chunked.source_offset.size(), chunked.interpolation.size());
+    if (chunk == rows) {
+      single = chunked;
+      // Applied to node-major values of both parities, the two give the same sums term by term.
+      std::mt19937 generator(7);
+      std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+      std::vector<double> in(2 * nodes.stress_points.size());
+      for (double& value : in)
+        value = uniform(generator);
+      const Parity parity[] = {kEven, vector_parity(1)};
+      std::vector<double> expected(2 * rows), out(2 * rows);
+      apply_interpolation_interleaved(whole, in, parity, expected);
+      apply_interpolation_interleaved(chunked, in, parity, out);
+      EXPECT_EQ(out, expected);
+    } else {
+      EXPECT_EQ(chunked.row_base, single.row_base) << chunk;
+      EXPECT_EQ(chunked.weight_start, single.weight_start) << chunk;
+      EXPECT_EQ(chunked.source_offset, single.source_offset) << chunk;
+      EXPECT_EQ(chunked.interpolation, single.interpolation) << chunk;
+    }
+  }
 }
 
 TEST(Degeneracy, EmptyAndSingleSourceStencilsAreReportedWithFiniteWeights) {

@@ -214,14 +214,18 @@ void DrySolid::flux_rate(std::span<const std::int32_t> material, const FieldArra
   }
 }
 
-void DrySolid::advance_velocity(double rate_v[3], double time, double interval, double v[3]) const {
-  // v' = R_v + b(t) - xi(t) v, classical RK4 with sub-steps when xi * interval is large.
+void DrySolid::advance_velocities(std::int64_t n, const FieldArray& rate, double time,
+                                  double interval, FieldArray& values) const {
+  // v' = R_v + b(t) - xi(t) v, classical RK4 with sub-steps when xi * interval is large. The loads
+  // are the same for every node: evaluated once per sub-step, with the nodes inside the sub-step
+  // (each node's arithmetic is the node-by-node loop's). Points [0, n) of the arrays.
   const int d = dimension();
   const double stiffness = loads_.damping_at(time);
   const int substeps =
       std::clamp(static_cast<int>(std::ceil(interval * stiffness / integration_.substep_factor)), 1,
                  integration_.max_substeps);
   const double delta = interval / substeps;
+  const bool frozen = integration_.frozen_flux;
   for (int s = 0; s < substeps; ++s) {
     const double t0 = time + s * delta;
     const Vec3 b0 = loads_.body_force(t0), b1 = loads_.body_force(t0 + 0.5 * delta),
@@ -229,17 +233,28 @@ void DrySolid::advance_velocity(double rate_v[3], double time, double interval, 
     const double x0 = loads_.damping_at(t0), x1 = loads_.damping_at(t0 + 0.5 * delta),
                  x2 = loads_.damping_at(t0 + delta);
     for (int a = 0; a < d; ++a) {
-      const double r = integration_.frozen_flux ? rate_v[a] : 0.0;
-      const double k1 = r + b0[a] - x0 * v[a];
-      const double k2 = r + b1[a] - x1 * (v[a] + 0.5 * delta * k1);
-      const double k3 = r + b1[a] - x1 * (v[a] + 0.5 * delta * k2);
-      const double k4 = r + b2[a] - x2 * (v[a] + delta * k3);
-      v[a] += delta / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+      const auto axis = static_cast<std::size_t>(a);
+      double* v = values.field(layout_.velocity(a));
+      const double* rate_v = rate.field(layout_.velocity(a));
+#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
+      for (std::int64_t i = 0; i < n; ++i) {
+        const double r = frozen ? rate_v[i] : 0.0;
+        const double k1 = r + b0[axis] - x0 * v[i];
+        const double k2 = r + b1[axis] - x1 * (v[i] + 0.5 * delta * k1);
+        const double k3 = r + b1[axis] - x1 * (v[i] + 0.5 * delta * k2);
+        const double k4 = r + b2[axis] - x2 * (v[i] + delta * k3);
+        v[i] += delta / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+      }
     }
   }
-  if (!integration_.frozen_flux)
-    for (int a = 0; a < d; ++a)
-      v[a] += interval * rate_v[a];
+  if (!frozen)
+    for (int a = 0; a < d; ++a) {
+      double* v = values.field(layout_.velocity(a));
+      const double* rate_v = rate.field(layout_.velocity(a));
+#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
+      for (std::int64_t i = 0; i < n; ++i)
+        v[i] += interval * rate_v[i];
+    }
 }
 
 void DrySolid::stress_source(const Material& material, const StiffnessMatrix& stiffness,
@@ -366,23 +381,13 @@ void DrySolid::advance(std::span<const std::int32_t> material, const FieldArray&
                        double interval, FieldArray& values, FieldArray& internal,
                        AdvancedFields part) const {
   const auto n = static_cast<std::int64_t>(material.size());
-  const int d = dimension();
   const int ns = layout_.stress_count();
   const int nk = internal_count_;
+  if (part != AdvancedFields::Others) advance_velocities(n, rate, time, interval, values);
+  if (part == AdvancedFields::Velocity) return;
 #pragma omp parallel for schedule(static) if (n > kParallelThreshold)
   for (std::int64_t i = 0; i < n; ++i) {
     const auto material_index = static_cast<std::size_t>(material[i]);
-    if (part != AdvancedFields::Others) {
-      double v[3] = {}, rate_v[3] = {};
-      for (int a = 0; a < d; ++a) {
-        v[a] = values.field(layout_.velocity(a))[i];
-        rate_v[a] = rate.field(layout_.velocity(a))[i];
-      }
-      advance_velocity(rate_v, time, interval, v);
-      for (int a = 0; a < d; ++a)
-        values.field(layout_.velocity(a))[i] = v[a];
-    }
-    if (part == AdvancedFields::Velocity) continue;
 
     double sigma[kMaxStress], rate_sigma[kMaxStress], kappa[kMaxInternal] = {};
     for (int c = 0; c < ns; ++c) {

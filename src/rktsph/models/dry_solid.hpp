@@ -109,7 +109,9 @@ class DrySolid : public PhysicsModel {
   template <int Dimension, int StressCount>
   void flux_rate_fixed(std::span<const std::int32_t> material, const FieldArray& gradient,
                        FieldArray& rate) const;
-  void advance_velocity(double rate_v[3], double time, double interval, double v[3]) const;
+  /// The velocity part of advance(), points [0, n) of `values`.
+  void advance_velocities(std::int64_t n, const FieldArray& rate, double time, double interval,
+                          FieldArray& values) const;
   void advance_stress(const Material& material, const StiffnessMatrix& stiffness,
                       const double* rate_sigma, double time, double interval, double* sigma,
                       double* kappa) const;

@@ -58,8 +58,9 @@ NodeEstimate checked_node_estimate(const CaseDescription& description,
                                    const SimulationLimits& limits) {
   const GeometrySpec& geometry = description.geometry;
   const NodeEstimate estimate = estimate_node_sets(geometry, description.dimension);
-  const double memory = estimated_run_memory(estimate.sph_nodes, estimate.lattice_points,
-                                             description.numerics.h_over_dx);
+  const double memory =
+      estimated_run_memory(description.model, estimate.sph_nodes, estimate.lattice_points,
+                           description.numerics.h_over_dx);
   // The node lookup spans the bounding box: far-apart shapes cost memory without nodes.
   const double lattice_limit = 16.0 * limits.max_nodes;
   if (estimate.sph_nodes <= limits.max_nodes && estimate.lattice_points <= lattice_limit)
@@ -247,8 +248,12 @@ double stable_courant_limit(double viscosity, bool compact_stencils) {
   return compact_stencils ? lax_wendroff : std::min(lax_wendroff, 0.75);
 }
 
-double estimated_run_memory(double sph_nodes, double lattice_points, double h_over_dx) {
-  const double bytes_per_node = 3.5e3 + 6.0e3 * std::max(h_over_dx - 0.75, 0.0);
+double estimated_run_memory(ModelKind model, double sph_nodes, double lattice_points,
+                            double h_over_dx) {
+  const double base = model == ModelKind::DryLargeDeformation ? 3.8e3
+                      : model == ModelKind::SaturatedVpw      ? 2.7e3
+                                                              : 1.3e3;
+  const double bytes_per_node = base + 6.0e3 * std::max(h_over_dx - 0.75, 0.0);
   return sph_nodes * bytes_per_node + 4.0 * lattice_points;
 }
 
@@ -256,8 +261,8 @@ double Assembly::estimated_memory() const {
   double lattice_points = 1.0;
   for (int a = 0; a < nodes_.dimension; ++a)
     lattice_points *= nodes_.lattice_size[a];
-  return estimated_run_memory(static_cast<double>(nodes_.sph_nodes.size()), lattice_points,
-                              description_.numerics.h_over_dx);
+  return estimated_run_memory(description_.model, static_cast<double>(nodes_.sph_nodes.size()),
+                              lattice_points, description_.numerics.h_over_dx);
 }
 
 Assembly::Assembly(CaseDescription description, SimulationLimits limits)

@@ -26,11 +26,13 @@ struct SimulationLimits {
   double max_nodes = 1e7;
 };
 
-/// Resident memory of a run [bytes] with this many SPH nodes, lattice points of the node lookup
-/// and smoothing length h/dx: measured peak RSS per node (/usr/bin/time -v, runs of 10k-160k nodes,
-/// docs/input-reference.md "Limits"): 3.1 KB dry and 3.5 KB saturated at h = 0.75 dx, 6.7 KB
-/// saturated at 1.3 dx; the larger figures, linear in h, plus 4 bytes per lattice point.
-double estimated_run_memory(double sph_nodes, double lattice_points, double h_over_dx);
+/// Resident memory of a run [bytes] of `model` with this many SPH nodes, lattice points of the
+/// node lookup and smoothing length h/dx: measured peak RSS per node (/usr/bin/time -v, runs of
+/// 1.5e5-1.6e5 nodes, docs/input-reference.md "Limits"): at h = 0.75 dx 1.26 KB for the dry model,
+/// 2.6 KB saturated, 3.7 KB on a moving configuration; 4.2 KB dry at 1.3 dx. Rounded up, plus
+/// 6 KB per unit of h/dx above 0.75 and 4 bytes per lattice point.
+double estimated_run_memory(ModelKind model, double sph_nodes, double lattice_points,
+                            double h_over_dx);
 
 /// The largest Courant number at which the step is stable, measured as the spectral radius of the
 /// full step matrix (<= 1 + 1e-9) on a 12 x 5 block with every boundary type (docs/theory.md

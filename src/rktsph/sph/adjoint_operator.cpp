@@ -1,4 +1,5 @@
 #include "rktsph/sph/adjoint_operator.hpp"
+#include "rktsph/core/parallel.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -16,7 +17,7 @@ void for_each_target_entry(const WeightTable& forward, const std::vector<std::in
   for (std::size_t p = 0; p < forward.rows(); ++p)
     for (auto k = static_cast<std::size_t>(forward.row_start[p]);
          k < static_cast<std::size_t>(forward.row_start[p + 1]); ++k) {
-      const std::int32_t r = row_of[static_cast<std::size_t>(forward.source[k])];
+      const std::int32_t r = row_of[static_cast<std::size_t>(forward.source_of(p, k))];
       if (r >= 0) visit(p, k, static_cast<std::size_t>(r));
     }
 }
@@ -35,13 +36,15 @@ AdjointOperator build_adjoint_operator(const WeightTable& forward,
 void build_adjoint_operator(const WeightTable& forward, std::span<const double> row_volume,
                             std::span<const std::int32_t> target,
                             std::span<const std::int32_t> self_column, AdjointOperator& adjoint) {
-  if (!forward.weight_start.empty() || !forward.has_gradient ||
-      row_volume.size() != forward.rows() || self_column.size() != target.size())
+  if (!forward.has_gradient || row_volume.size() != forward.rows() ||
+      self_column.size() != target.size())
     throw std::invalid_argument("build_adjoint_operator: inconsistent forward table or sizes");
   const int d = forward.dimension;
   std::int32_t columns = 0;
-  for (std::int32_t s : forward.source)
-    columns = std::max(columns, s + 1);
+  for (std::size_t p = 0; p < forward.rows(); ++p)
+    for (auto k = static_cast<std::size_t>(forward.row_start[p]);
+         k < static_cast<std::size_t>(forward.row_start[p + 1]); ++k)
+      columns = std::max(columns, forward.source_of(p, k) + 1);
   for (std::int32_t n : target)
     columns = std::max(columns, n + 1);
   std::vector<std::int32_t>& row_of = adjoint.row_of;
@@ -58,7 +61,9 @@ void build_adjoint_operator(const WeightTable& forward, std::span<const double> 
   adjoint.lumped_volume.assign(target.size(), 0.0);
   for_each_target_entry(forward, row_of, [&](std::size_t p, std::size_t k, std::size_t row) {
     ++table.row_start[row + 1];
-    adjoint.lumped_volume[row] += row_volume[p] * forward.interpolation[k];
+    const auto weight =
+        static_cast<std::size_t>(static_cast<std::int64_t>(k) + forward.weight_offset(p));
+    adjoint.lumped_volume[row] += row_volume[p] * forward.interpolation[weight];
   });
   for (std::size_t r = 0; r < target.size(); ++r) {
     const double volume = adjoint.lumped_volume[r];
@@ -77,18 +82,22 @@ void build_adjoint_operator(const WeightTable& forward, std::span<const double> 
   table.has_gradient = true;
   table.weight_start.clear();
   table.row_reflects.clear();
+  table.row_base.clear();
+  table.source_offset.clear();
   adjoint.cursor.assign(table.row_start.begin(), table.row_start.end() - 1);
   for_each_target_entry(forward, row_of, [&](std::size_t p, std::size_t k, std::size_t row) {
     const auto e = static_cast<std::size_t>(adjoint.cursor[row]++);
     const double volume = adjoint.lumped_volume[row];
-    const std::uint8_t reflection = forward.has_reflections ? forward.reflection[k] : 0;
+    const auto weight = static_cast<std::size_t>(static_cast<std::int64_t>(k) +
+                                                 forward.weight_offset(p));  // shared weights
+    const std::uint8_t reflection = forward.has_reflections ? forward.reflection[weight] : 0;
     table.source[e] = static_cast<std::int32_t>(p);
     table.reflection[e] = reflection;
     table.has_reflections = table.has_reflections || reflection != 0;
-    table.interpolation[e] = row_volume[p] * forward.interpolation[k] / volume;
+    table.interpolation[e] = row_volume[p] * forward.interpolation[weight] / volume;
     for (int c = 0; c < d; ++c)
       table.gradient[static_cast<std::size_t>(c)][e] =
-          -row_volume[p] * forward.gradient[static_cast<std::size_t>(c)][k] / volume;
+          -row_volume[p] * forward.gradient[static_cast<std::size_t>(c)][weight] / volume;
   });
   adjoint.target.assign(target.begin(), target.end());
   adjoint.self_column.assign(self_column.begin(), self_column.end());
@@ -103,16 +112,22 @@ void add_adjoint_interpolation(const AdjointOperator& adjoint, const FieldArray&
       static_cast<int>(selected.size()) != field_count || out.field_count() < field_count)
     throw std::invalid_argument(
         "add_adjoint_interpolation: field count, parity and outputs disagree");
-  for (std::size_t r = 0; r < table.rows(); ++r) {
+  // Rows in parallel: each target node is the row of one adjoint row only.
+  const auto rows = static_cast<std::int64_t>(table.rows());
+#pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
+  for (std::int64_t row = 0; row < rows; ++row) {
+    const auto r = static_cast<std::size_t>(row);
     const auto node = static_cast<std::size_t>(adjoint.target[r]);
     for (int f = 0; f < field_count; ++f) {
       if (!selected[static_cast<std::size_t>(f)]) continue;
       const double* values = in.field(f);
       const auto odd = static_cast<unsigned>(parity[static_cast<std::size_t>(f)]);
       double sum = 0.0;
+      const std::int64_t offset = table.weight_offset(r);  // shared weights (share_row_weights)
       for (auto k = static_cast<std::size_t>(table.row_start[r]);
            k < static_cast<std::size_t>(table.row_start[r + 1]); ++k) {
-        sum += table.interpolation[k] * reflection_sign(table.reflection[k], odd) *
+        const auto w = static_cast<std::size_t>(static_cast<std::int64_t>(k) + offset);
+        sum += table.interpolation[w] * reflection_sign(table.reflection[w], odd) *
                values[table.source[k]];
       }
       out.field(f)[node] += sum;
@@ -141,10 +156,12 @@ void apply_adjoint_gradient(const AdjointOperator& adjoint, const FieldArray& in
         // Sign of a reflected entry: the parity of the momentum component this term feeds.
         const unsigned odd = static_cast<unsigned>(parity[static_cast<std::size_t>(f)]) ^ (1u << c);
         double sum = 0.0;
+        const std::int64_t offset = table.weight_offset(r);  // shared weights
         for (auto k = static_cast<std::size_t>(table.row_start[r]);
              k < static_cast<std::size_t>(table.row_start[r + 1]); ++k) {
-          sum += table.gradient[static_cast<std::size_t>(c)][k] *
-                 reflection_sign(table.reflection[k], odd) * (values[table.source[k]] - own);
+          const auto w = static_cast<std::size_t>(static_cast<std::int64_t>(k) + offset);
+          sum += table.gradient[static_cast<std::size_t>(c)][w] *
+                 reflection_sign(table.reflection[w], odd) * (values[table.source[k]] - own);
         }
         out_gradient.field(f * d + c)[node] = sum;
       }

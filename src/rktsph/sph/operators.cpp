@@ -385,8 +385,8 @@ bool append_row(WeightTable& table, const Vector& target, std::span<const Stenci
                  table.reflection.data() + first,
                  table.interpolation.data() + first,
                  {}};
-  for (std::size_t a = 0; a < 3; ++a) {
-    table.gradient[a].resize(size);
+  for (std::size_t a = 0; a < static_cast<std::size_t>(table.dimension); ++a) {
+    table.gradient[a].resize(size);  // none along the axes beyond the dimension
     slots.gradient[a] = table.gradient[a].data() + first;
   }
   const bool regular =
@@ -410,6 +410,8 @@ void reset_table(WeightTable& table, int dimension) {
   table.has_gradient = true;
   table.weight_start.clear();
   table.row_reflects.clear();
+  table.row_base.clear();
+  table.source_offset.clear();
 }
 
 namespace row_blocks {
@@ -446,18 +448,20 @@ void compute(int dimension, const OperatorOptions& options, const RowTarget& tar
              std::size_t row, WeightTable& table, OperatorWorkspace& workspace, RowBlock& block) {
   const std::size_t first = block.entries;
   const std::size_t end = first + row_size(block.stencil.size(), target.reference);
+  const auto axes = static_cast<std::size_t>(dimension);
   if (block.source.size() < end) {  // grows geometrically, then never again
     block.source.resize(end);
     block.reflection.resize(end);
     block.interpolation.resize(end);
-    for (auto& g : block.gradient)
-      g.resize(end);
+    for (std::size_t a = 0; a < axes; ++a)  // the axes beyond the dimension hold nothing
+      block.gradient[a].resize(end);
   }
-  const RowSlots slots{block.source.data() + first,
-                       block.reflection.data() + first,
-                       block.interpolation.data() + first,
-                       {block.gradient[0].data() + first, block.gradient[1].data() + first,
-                        block.gradient[2].data() + first}};
+  RowSlots slots{block.source.data() + first,
+                 block.reflection.data() + first,
+                 block.interpolation.data() + first,
+                 {}};
+  for (std::size_t a = 0; a < axes; ++a)
+    slots.gradient[a] = block.gradient[a].data() + first;
   workspace.regular[row] = compute_row(dimension, target.position, block.stencil, options,
                                        target.reference, target.self_column, slots)
                                ? 1
@@ -490,8 +494,9 @@ void size_table(int dimension, TableWeights weights, WeightTable& table,
     table.source.resize(entries);
     table.reflection.resize(entries);
     table.interpolation.resize(entries);
-    for (auto& g : table.gradient)
-      g.resize(keep_gradient ? entries : 0);
+    for (int a = 0; a < 3; ++a)  // none along the axes beyond the dimension
+      table.gradient[static_cast<std::size_t>(a)].resize(keep_gradient && a < dimension ? entries
+                                                                                        : 0);
   } catch (...) {  // thrown inside a parallel region it would terminate the program
     workspace.failure = std::current_exception();
     table.source.clear();  // place() then copies nothing
@@ -500,6 +505,8 @@ void size_table(int dimension, TableWeights weights, WeightTable& table,
   table.has_reflections = reflections;
   table.weight_start.clear();
   table.row_reflects.clear();
+  table.row_base.clear();
+  table.source_offset.clear();
 }
 
 void place(TableWeights weights, std::size_t first, std::size_t last, const RowBlock& block,
@@ -513,7 +520,7 @@ void place(TableWeights weights, std::size_t first, std::size_t last, const RowB
   std::copy_n(block.reflection.data(), n, table.reflection.data() + block.offset);
   std::copy_n(block.interpolation.data(), n, table.interpolation.data() + block.offset);
   if (weights == TableWeights::InterpolationAndGradient)
-    for (std::size_t a = 0; a < 3; ++a)
+    for (std::size_t a = 0; a < static_cast<std::size_t>(table.dimension); ++a)
       std::copy_n(block.gradient[a].data(), n, table.gradient[a].data() + block.offset);
 }
 
@@ -615,17 +622,22 @@ void interpolate_rows(const WeightTable& table, const Inputs& input, int runtime
   // Shared weights (share_row_weights): row i's weights start at weight_start[i] in the pool.
   const std::int64_t* weight_start =
       table.weight_start.empty() ? row_start : table.weight_start.data();
-  const std::int32_t* source = table.source.data();
+  const bool relative = !table.row_base.empty();
   double* output[kMaxFields];
   for (int f = 0; f < fields; ++f)
     output[f] = out.field(f);
 #pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
   for (std::int64_t i = 0; i < rows; ++i) {
     double value[kMaxFields] = {};
-    const double* weight = table.interpolation.data() + (weight_start[i] - row_start[i]);
-    const std::uint8_t* reflection = table.reflection.data() + (weight_start[i] - row_start[i]);
+    const std::int64_t offset = weight_start[i] - row_start[i];
+    const double* weight = table.interpolation.data() + offset;
+    const std::uint8_t* reflection = table.reflection.data() + offset;
+    // Relative sources: the row's base plus the pool's offsets (WeightTable::row_base).
+    const std::int32_t* source =
+        relative ? table.source_offset.data() + offset : table.source.data();
+    const std::int32_t base = relative ? table.row_base[static_cast<std::size_t>(i)] : 0;
     for (std::int64_t k = row_start[i]; k < row_start[i + 1]; ++k) {
-      const std::int32_t j = source[k];
+      const std::int32_t j = base + source[k];
       const double w = weight[k];
       if constexpr (Reflect) {
         const double* sign = signs.sign + reflection[k];
@@ -649,13 +661,18 @@ void differentiate_rows(const WeightTable& table, const Inputs& input, int runti
   const int fields = FieldCount > 0 ? FieldCount : runtime_fields;
   const auto rows = static_cast<std::int64_t>(table.rows());
   const std::int64_t* row_start = table.row_start.data();
+  // Shared weights (share_row_weights): row i's weights start at weight_start[i] in the pools.
+  const std::int64_t* weight_start =
+      table.weight_start.empty() ? row_start : table.weight_start.data();
   const std::int32_t* source = table.source.data();
-  const std::uint8_t* reflection = table.reflection.data();
-  const double* weight = table.interpolation.data();
-  const double* gradient[3] = {table.gradient[0].data(), table.gradient[1].data(),
-                               table.gradient[2].data()};
 #pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
   for (std::int64_t i = 0; i < rows; ++i) {
+    const std::int64_t offset = weight_start[i] - row_start[i];
+    const std::uint8_t* reflection = table.reflection.data() + offset;
+    const double* weight = table.interpolation.data() + offset;
+    const double* gradient[D];
+    for (int c = 0; c < D; ++c)
+      gradient[c] = table.gradient[static_cast<std::size_t>(c)].data() + offset;
     double value[kMaxFields] = {};
     double derivative[kMaxFields * D] = {};
     for (std::int64_t k = row_start[i]; k < row_start[i + 1]; ++k) {
@@ -693,15 +710,24 @@ void interpolate_interleaved_rows(const WeightTable& table, const double* in, in
       table.weight_start.empty() ? row_start : table.weight_start.data();
   const std::uint8_t* row_reflects =
       table.row_reflects.empty() ? nullptr : table.row_reflects.data();
-  const std::int32_t* source = table.source.data();
+  const bool relative = !table.row_base.empty();
 #pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
   for (std::int64_t i = 0; i < rows; ++i) {
     double value[kMaxFields] = {};
-    const double* weight = table.interpolation.data() + (weight_start[i] - row_start[i]);
-    const std::uint8_t* reflection = table.reflection.data() + (weight_start[i] - row_start[i]);
+    const std::int64_t offset = weight_start[i] - row_start[i];
+    const double* weight = table.interpolation.data() + offset;
+    const std::uint8_t* reflection = table.reflection.data() + offset;
+    // Relative sources: the row's base plus the pool's offsets (WeightTable::row_base), so a
+    // lattice's rows stream one index each instead of one per entry.
+    const std::int32_t* source =
+        relative ? table.source_offset.data() + offset : table.source.data();
+    const double* base =
+        in + (relative
+                  ? static_cast<std::int64_t>(table.row_base[static_cast<std::size_t>(i)]) * fields
+                  : 0);
     if (Reflect && (row_reflects == nullptr || row_reflects[i])) {
       for (std::int64_t k = row_start[i]; k < row_start[i + 1]; ++k) {
-        const double* v = in + static_cast<std::int64_t>(source[k]) * fields;
+        const double* v = base + static_cast<std::int64_t>(source[k]) * fields;
         const double w = weight[k];
         const double* sign = signs.sign + reflection[k];
         for (int f = 0; f < fields; ++f)
@@ -709,7 +735,7 @@ void interpolate_interleaved_rows(const WeightTable& table, const double* in, in
       }
     } else {
       for (std::int64_t k = row_start[i]; k < row_start[i + 1]; ++k) {
-        const double* v = in + static_cast<std::int64_t>(source[k]) * fields;
+        const double* v = base + static_cast<std::int64_t>(source[k]) * fields;
         const double w = weight[k];
         for (int f = 0; f < fields; ++f)
           value[f] += w * v[f];
@@ -816,108 +842,223 @@ std::uint64_t hash_entry(std::uint64_t hash, std::int64_t quantised, std::uint8_
   return hash ^ (hash >> 29);
 }
 
+// The quantum of a row's key: 1e-13 of its largest weight. Rows that round alike differ by less
+// than that and share the first one's weights.
+double key_quantum(const double* weight, std::int64_t count) {
+  double largest = 0.0;
+  for (std::int64_t k = 0; k < count; ++k)
+    largest = std::max(largest, std::abs(weight[k]));
+  return 1e-13 * (largest > 0.0 ? largest : 1.0);
+}
+
+// Whether the chunk row [begin, end) of the workspace has the key of pool block `pool_start` (the
+// owner's weights, sorted as the row's are, so their quantised values are the owner's own key).
+bool same_key(const ShareWorkspace& w, std::int64_t begin, std::int64_t end,
+              const WeightTable& table, std::int64_t pool_start) {
+  const std::int64_t length = end - begin;
+  const std::uint8_t* reflection = table.reflection.data() + pool_start;
+  for (std::int64_t k = 0; k < length; ++k)
+    if (w.reflection[static_cast<std::size_t>(begin + k)] != reflection[k]) return false;
+  if (w.relative_sources) {
+    const std::int32_t* offset = table.source_offset.data() + pool_start;
+    const std::int32_t base = w.source[static_cast<std::size_t>(begin)];
+    for (std::int64_t k = 0; k < length; ++k)
+      if (w.source[static_cast<std::size_t>(begin + k)] - base != offset[k]) return false;
+  }
+  for (std::size_t q = 0; q < w.quantities; ++q) {
+    const double* weight =
+        (q == 0 ? table.interpolation : table.gradient[q - 1]).data() + pool_start;
+    const double quantum = key_quantum(weight, length);
+    const std::int64_t* quantised = w.quantised[q].data() + begin;
+    for (std::int64_t k = 0; k < length; ++k)
+      if (quantised[k] != std::llround(weight[k] / quantum)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
-void share_row_weights(WeightTable& table, ShareWorkspace& workspace) {
-  if (table.has_gradient)
-    throw std::invalid_argument("share_row_weights: the table still holds gradient weights");
-  if (!table.weight_start.empty()) return;  // already shared
-  const std::size_t row_count = table.rows();
-  const std::size_t entries = table.entries();
-  const auto rows = static_cast<std::int64_t>(row_count);
-  ShareWorkspace& w = workspace;
-  w.order.resize(entries);
-  w.source.resize(entries);
-  w.reflection.resize(entries);
-  w.weight.resize(entries);
-  w.quantised.resize(entries);
-  w.hash.resize(row_count);
-  w.owner.resize(row_count);
-  table.row_reflects.resize(row_count);
-  table.weight_start.resize(row_count);
-
-  // Each row on its own, in parallel: order its entries by source (the same std::sort on the same
-  // index sequence as a serial pass, so ties fall alike), then its key: the reflection bits and
-  // the weights rounded to 1e-13 of the largest one. Rows that round alike differ by less than
-  // that and share the first one's weights.
-#pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
-  for (std::int64_t i = 0; i < rows; ++i) {
-    const auto row = static_cast<std::size_t>(i);
-    const std::int64_t begin = table.row_start[row], end = table.row_start[row + 1];
-    const auto order = w.order.begin() + begin;
-    std::iota(order, w.order.begin() + end, begin);
-    std::sort(order, w.order.begin() + end, [&](std::int64_t a, std::int64_t b) {
-      return std::tie(table.source[a], table.reflection[a]) <
-             std::tie(table.source[b], table.reflection[b]);
-    });
-    double largest = 0.0;
-    bool reflects = false;
-    for (std::int64_t k = begin; k < end; ++k) {
-      const auto e = static_cast<std::size_t>(w.order[k]);
-      w.source[k] = table.source[e];
-      w.reflection[k] = table.reflection[e];
-      w.weight[k] = table.interpolation[e];
-      largest = std::max(largest, std::abs(w.weight[k]));
-      reflects = reflects || w.reflection[k] != 0;
-    }
-    const double quantum = 1e-13 * (largest > 0.0 ? largest : 1.0);
-    std::uint64_t hash = static_cast<std::uint64_t>(end - begin);
-    for (std::int64_t k = begin; k < end; ++k) {
-      w.quantised[k] = static_cast<std::int64_t>(std::llround(w.weight[k] / quantum));
-      hash = hash_entry(hash, w.quantised[k], w.reflection[k]);
-    }
-    w.hash[row] = hash;
-    table.row_reflects[row] = reflects ? 1 : 0;
-  }
-  std::copy(w.source.begin(), w.source.end(), table.source.begin());
-
-  // Serial, in row order, so that the first row of each key owns the pool's copy: an
-  // open-addressing table of rows, probed by hash and confirmed on the whole key.
+void begin_shared_table(std::size_t row_count, int dimension, bool gradient, bool relative_sources,
+                        WeightTable& table, ShareWorkspace& workspace) {
+  table.dimension = dimension;
+  table.row_start.assign(1, 0);
+  table.row_start.reserve(row_count + 1);
+  table.source.clear();
+  table.reflection.clear();
+  table.interpolation.clear();
+  for (auto& g : table.gradient)
+    g.clear();
+  table.has_gradient = gradient;
+  table.has_reflections = false;
+  table.weight_start.clear();
+  table.weight_start.reserve(row_count);
+  table.row_reflects.clear();
+  table.row_reflects.reserve(row_count);
+  table.row_base.clear();
+  table.source_offset.clear();
+  if (relative_sources) table.row_base.reserve(row_count);
+  workspace.relative_sources = relative_sources;
   std::size_t capacity = 16;
   while (capacity < 2 * row_count)
     capacity *= 2;
-  w.slot.assign(capacity, -1);
-  std::int64_t pool_size = 0;
-  for (std::size_t row = 0; row < row_count; ++row) {
-    const std::int64_t begin = table.row_start[row], end = table.row_start[row + 1];
-    std::size_t probe = static_cast<std::size_t>(w.hash[row]) & (capacity - 1);
-    std::int64_t match = -1;
-    for (; w.slot[probe] >= 0; probe = (probe + 1) & (capacity - 1)) {
-      const auto other = static_cast<std::size_t>(w.slot[probe]);
-      const std::int64_t other_begin = table.row_start[other];
-      if (w.hash[other] != w.hash[row] || table.row_start[other + 1] - other_begin != end - begin)
-        continue;
-      if (std::equal(w.quantised.begin() + begin, w.quantised.begin() + end,
-                     w.quantised.begin() + other_begin) &&
-          std::equal(w.reflection.begin() + begin, w.reflection.begin() + end,
-                     w.reflection.begin() + other_begin)) {
-        match = static_cast<std::int64_t>(other);
-        break;
-      }
-    }
-    if (match >= 0) {
-      table.weight_start[row] = table.weight_start[static_cast<std::size_t>(match)];
-      w.owner[row] = 0;
-    } else {
-      w.slot[probe] = static_cast<std::int64_t>(row);
-      table.weight_start[row] = pool_size;
-      pool_size += end - begin;
-      w.owner[row] = 1;
-    }
-  }
+  workspace.slot.assign(capacity, ShareWorkspace::Slot{});
+  workspace.rows = row_count;
+  workspace.quantities = gradient ? 1 + static_cast<std::size_t>(dimension) : 1;
+}
 
-  // The pool: each owner's sorted weights and reflection bits at its start (in parallel).
-  table.interpolation.resize(static_cast<std::size_t>(pool_size));
-  table.reflection.resize(static_cast<std::size_t>(pool_size));
+void append_shared_rows(const WeightTable& chunk, WeightTable& table, ShareWorkspace& workspace) {
+  if (chunk.has_gradient != table.has_gradient || chunk.dimension != table.dimension)
+    throw std::invalid_argument("append_shared_rows: the rows' weights are not the table's kind");
+  const std::size_t row_count = chunk.rows();
+  const std::size_t entries = chunk.entries();
+  if (table.rows() + row_count > workspace.rows)
+    throw std::invalid_argument("append_shared_rows: more rows than begin_shared_table was told");
+  const auto rows = static_cast<std::int64_t>(row_count);
+  ShareWorkspace& w = workspace;
+  const std::size_t quantities = w.quantities;  // the interpolation, then each gradient axis
+  w.order.resize(entries);
+  w.source.resize(entries);
+  w.reflection.resize(entries);
+  for (std::size_t q = 0; q < quantities; ++q) {
+    w.weight[q].resize(entries);
+    w.quantised[q].resize(entries);
+  }
+  w.hash.resize(row_count);
+  w.reflects.resize(row_count);
+  w.base.resize(row_count);
+  const bool relative = w.relative_sources;
+  const double* chunk_weight[4] = {chunk.interpolation.data(), chunk.gradient[0].data(),
+                                   chunk.gradient[1].data(), chunk.gradient[2].data()};
+
+  // Each row on its own, in parallel: order its entries by source (the same std::sort on the same
+  // index sequence as a serial pass, so ties fall alike), then its key: the reflection bits and
+  // each kind of weight rounded to 1e-13 of the row's largest of that kind.
 #pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
   for (std::int64_t i = 0; i < rows; ++i) {
     const auto row = static_cast<std::size_t>(i);
-    if (!w.owner[row]) continue;
-    const std::int64_t begin = table.row_start[row], end = table.row_start[row + 1];
-    std::copy(w.weight.begin() + begin, w.weight.begin() + end,
-              table.interpolation.begin() + table.weight_start[row]);
-    std::copy(w.reflection.begin() + begin, w.reflection.begin() + end,
-              table.reflection.begin() + table.weight_start[row]);
+    const std::int64_t begin = chunk.row_start[row], end = chunk.row_start[row + 1];
+    const auto order = w.order.begin() + begin;
+    std::iota(order, w.order.begin() + end, begin);
+    std::sort(order, w.order.begin() + end, [&](std::int64_t a, std::int64_t b) {
+      return std::tie(chunk.source[a], chunk.reflection[a]) <
+             std::tie(chunk.source[b], chunk.reflection[b]);
+    });
+    bool reflects = false;
+    for (std::int64_t k = begin; k < end; ++k) {
+      const auto e = static_cast<std::size_t>(w.order[k]);
+      w.source[k] = chunk.source[e];
+      w.reflection[k] = chunk.reflection[e];
+      for (std::size_t q = 0; q < quantities; ++q)
+        w.weight[q][k] = chunk_weight[q][e];
+      reflects = reflects || w.reflection[k] != 0;
+    }
+    std::uint64_t hash = static_cast<std::uint64_t>(end - begin);
+    for (std::int64_t k = begin; k < end; ++k)
+      hash = hash_entry(hash, 0, w.reflection[k]);
+    w.base[row] = end > begin ? w.source[begin] : 0;
+    if (relative)
+      for (std::int64_t k = begin; k < end; ++k)
+        hash = hash_entry(hash, w.source[k] - w.base[row], 0);
+    for (std::size_t q = 0; q < quantities; ++q) {
+      const double quantum = key_quantum(w.weight[q].data() + begin, end - begin);
+      for (std::int64_t k = begin; k < end; ++k) {
+        w.quantised[q][k] = static_cast<std::int64_t>(std::llround(w.weight[q][k] / quantum));
+        hash = hash_entry(hash, w.quantised[q][k], 0);
+      }
+    }
+    w.hash[row] = hash;
+    w.reflects[row] = reflects ? 1 : 0;
+  }
+
+  // Serial, in row order, so that the first row of each key owns the pool's copy: an
+  // open-addressing table of the owners, probed by hash and confirmed on the whole key.
+  const std::size_t mask = w.slot.size() - 1;
+  const std::size_t done = table.rows();
+  if (!relative && done > 0 && table.source.capacity() < table.source.size() + entries) {
+    // Grow to the rows' mean length so far times all rows, not by doubling: the source indices
+    // are the table's bulk, and a doubled array would be up to twice what it needs.
+    const double per_row = static_cast<double>(table.source.size()) / static_cast<double>(done);
+    const auto estimate = static_cast<std::size_t>(per_row * static_cast<double>(w.rows) * 1.02);
+    table.source.reserve(std::max(estimate, table.source.size() + 2 * entries));
+  }
+  for (std::size_t row = 0; row < row_count; ++row) {
+    const std::int64_t begin = chunk.row_start[row], end = chunk.row_start[row + 1];
+    const auto length = end - begin;
+    std::size_t probe = static_cast<std::size_t>(w.hash[row]) & mask;
+    std::int64_t pool_start = -1;
+    for (; w.slot[probe].row >= 0; probe = (probe + 1) & mask) {
+      const ShareWorkspace::Slot& other = w.slot[probe];
+      const auto owner = static_cast<std::size_t>(other.row);
+      if (other.hash != w.hash[row] ||
+          table.row_start[owner + 1] - table.row_start[owner] != length)
+        continue;
+      if (same_key(w, begin, end, table, table.weight_start[owner])) {
+        pool_start = table.weight_start[owner];
+        break;
+      }
+    }
+    if (pool_start < 0) {  // the first row of its key: its weights start a pool block
+      w.slot[probe] = ShareWorkspace::Slot{static_cast<std::int64_t>(table.rows()), w.hash[row]};
+      pool_start = static_cast<std::int64_t>(table.interpolation.size());
+      for (std::size_t q = 0; q < quantities; ++q) {
+        std::vector<double>& pool = q == 0 ? table.interpolation : table.gradient[q - 1];
+        pool.insert(pool.end(), w.weight[q].begin() + begin, w.weight[q].begin() + end);
+      }
+      table.reflection.insert(table.reflection.end(), w.reflection.begin() + begin,
+                              w.reflection.begin() + end);
+      if (relative)
+        for (std::int64_t k = begin; k < end; ++k)
+          table.source_offset.push_back(w.source[k] - w.base[row]);
+    }
+    table.weight_start.push_back(pool_start);
+    if (relative)
+      table.row_base.push_back(w.base[row]);
+    else
+      table.source.insert(table.source.end(), w.source.begin() + begin, w.source.begin() + end);
+    table.row_start.push_back(table.row_start.back() + length);
+    table.row_reflects.push_back(w.reflects[row]);
+    table.has_reflections = table.has_reflections || w.reflects[row] != 0;
+  }
+}
+
+void share_row_weights(WeightTable& table, ShareWorkspace& workspace) {
+  if (!table.weight_start.empty()) return;  // already shared
+  WeightTable& shared = workspace.shared;
+  begin_shared_table(table.rows(), table.dimension, table.has_gradient, false, shared, workspace);
+  append_shared_rows(table, shared, workspace);
+  table = std::move(shared);  // the arrays with a weight per entry are freed
+  shared = WeightTable{};
+}
+
+void shrink_table(WeightTable& table) {
+  table.row_start.shrink_to_fit();
+  table.source.shrink_to_fit();
+  table.reflection.shrink_to_fit();
+  table.interpolation.shrink_to_fit();
+  for (auto& g : table.gradient)
+    g.shrink_to_fit();
+  table.weight_start.shrink_to_fit();
+  table.row_reflects.shrink_to_fit();
+  table.row_base.shrink_to_fit();
+  table.source_offset.shrink_to_fit();
+}
+
+void build_shared_cross_operator(const PointCloud& targets, const CellList& sources,
+                                 const OperatorOptions& options, WeightTable& table,
+                                 OperatorWorkspace& workspace, ShareWorkspace& share_workspace,
+                                 std::size_t chunk_rows) {
+  const std::size_t row_count = targets.size();
+  begin_shared_table(row_count, targets.dimension, false, true, table, share_workspace);
+  WeightTable& chunk = share_workspace.chunk;
+  for (std::size_t first = 0; first < row_count; first += chunk_rows) {
+    const std::size_t count = std::min(chunk_rows, row_count - first);
+    build_rows(count, targets.dimension, options, TableWeights::InterpolationOnly, chunk, workspace,
+               [&](std::size_t r, std::vector<StencilSource>& stencil) {
+                 const Vector x = targets.point(first + r);
+                 gather_stencil(x, sources, options, -1, stencil);
+                 return RowTarget{x, GradientReference::ShepardCentroid, -1};
+               });
+    append_shared_rows(chunk, table, share_workspace);
   }
 }
 

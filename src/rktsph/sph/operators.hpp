@@ -47,8 +47,29 @@ struct WeightTable {
   /// Empty, or (after share_row_weights) 1 for the rows with a reflected entry.
   std::vector<std::uint8_t> row_reflects;
 
+  /// Empty, or (relative sources, build_shared_cross_operator) each row's first source: entry k of
+  /// row r then reads column row_base[r] + source_offset[k + weight_offset(r)], and `source` is
+  /// empty. On a lattice the interior rows share one pattern of offsets as they share weights.
+  std::vector<std::int32_t> row_base;
+  /// Empty, or the pool of source offsets beside the weights' pool (relative sources).
+  std::vector<std::int32_t> source_offset;
+
   std::size_t rows() const { return row_start.empty() ? 0 : row_start.size() - 1; }
-  std::size_t entries() const { return source.size(); }
+  /// Where row `row`'s weights and reflection bits are: entry k of the row (row_start[row] <= k <
+  /// row_start[row + 1]) has them at k + weight_offset(row).
+  std::int64_t weight_offset(std::size_t row) const {
+    return weight_start.empty() ? 0 : weight_start[row] - row_start[row];
+  }
+  std::size_t entries() const {
+    return row_start.empty() ? 0 : static_cast<std::size_t>(row_start.back());
+  }
+  /// The column of entry k of row `row`, whichever way the table stores its sources.
+  std::int32_t source_of(std::size_t row, std::size_t k) const {
+    return row_base.empty()
+               ? source[k]
+               : row_base[row] + source_offset[static_cast<std::size_t>(
+                                     static_cast<std::int64_t>(k) + weight_offset(row))];
+  }
 };
 
 /// Parity of a field under mirror reflections: bit a set means the field changes sign when
@@ -204,16 +225,30 @@ struct OperatorWorkspace {
   std::exception_ptr failure;         ///< of the last build's sizing (build_rows rethrows it)
 };
 
-/// Buffers of share_row_weights (docs/theory.md §3.3), kept between builds.
+/// Buffers of the tables whose rows share their weights (share_row_weights,
+/// build_shared_cross_operator; docs/theory.md §3.3), kept between builds. The per-entry arrays
+/// hold one chunk of rows at a time.
 struct ShareWorkspace {
+  struct Slot {
+    std::int64_t row = -1;   ///< the owner row of a key in the table being built; -1: empty
+    std::uint64_t hash = 0;  ///< its key's hash
+  };
   std::vector<std::int64_t> order;       ///< per entry: the row's sort permutation
   std::vector<std::int32_t> source;      ///< per entry, sorted by row
   std::vector<std::uint8_t> reflection;  ///< per entry, sorted by row
-  std::vector<double> weight;            ///< per entry, sorted by row
-  std::vector<std::int64_t> quantised;   ///< per entry: the weight rounded to the row's quantum
-  std::vector<std::uint64_t> hash;       ///< per row: hash of its key
-  std::vector<std::uint8_t> owner;       ///< per row: 1 if its weights start a pool block
-  std::vector<std::int64_t> slot;        ///< open-addressing table of rows by key
+  /// Per kind of weight (the interpolation, then the gradient along each axis) and entry, sorted
+  /// by row: the weight, and the weight rounded to the row's quantum for that kind.
+  std::array<std::vector<double>, 4> weight;
+  std::array<std::vector<std::int64_t>, 4> quantised;
+  std::size_t quantities = 1;       ///< kinds of weight of the table being built
+  bool relative_sources = false;    ///< the table being built keeps row_base and source_offset
+  std::vector<std::int32_t> base;   ///< per row of the chunk: its first source (relative sources)
+  std::vector<std::uint64_t> hash;  ///< per row of the chunk: hash of its key
+  std::vector<std::uint8_t> reflects;  ///< per row of the chunk: 1 if it has a reflected entry
+  std::vector<Slot> slot;              ///< open-addressing table of the owners by key
+  std::size_t rows = 0;                ///< rows of the table being built
+  WeightTable chunk;                   ///< build_shared_cross_operator's rows of one chunk
+  WeightTable shared;                  ///< share_row_weights' result before it is moved in
 };
 
 /// Cross-set operator targets <- sources: interpolation (Shepard or first order) and the
@@ -302,13 +337,32 @@ void build_rows(std::size_t row_count, int dimension, const OperatorOptions& opt
 /// Frees the gradient weights of a table used only for interpolation (the hourglass filter).
 void drop_gradients(WeightTable& table);
 
-/// For an interpolation-only table: orders each row's entries by source and lets rows whose
-/// weights and reflection bits agree (to 1e-13 of their largest weight) share one copy. On a
-/// lattice every interior row has the same stencil, so applying the table then streams only the
-/// source indices from memory (4 bytes per entry instead of 13). Results change by rounding only.
+/// Orders each row's entries by source and lets rows whose weights and reflection bits agree (each
+/// kind of weight to 1e-13 of the row's largest of that kind) share one copy. On a lattice every
+/// interior row has the same stencil, so applying the table then streams only the source indices
+/// from memory (4 bytes per entry instead of 13, or 29 with a 2D gradient). Results change by
+/// rounding only.
 void share_row_weights(WeightTable& table);
-/// The same with reusable buffers, parallel over rows: no allocation once they have grown.
+/// The same with reusable buffers, parallel over rows. The table's arrays are replaced by the
+/// shared ones (a table shared once is built once: its old arrays are freed).
 void share_row_weights(WeightTable& table, ShareWorkspace& workspace);
+/// Frees the capacity of a table's arrays beyond their sizes (a table built once, shared).
+void shrink_table(WeightTable& table);
+/// The pieces of both: begin_shared_table empties `table` for `row_count` rows whose weights will
+/// be shared; append_shared_rows appends the rows of an interpolation-only `chunk` to it, each
+/// row ordered by source and pointing at the pool block of the first row with its key.
+void begin_shared_table(std::size_t row_count, int dimension, bool gradient, bool relative_sources,
+                        WeightTable& table, ShareWorkspace& workspace);
+void append_shared_rows(const WeightTable& chunk, WeightTable& table, ShareWorkspace& workspace);
+/// build_cross_operator (interpolation only) followed by share_row_weights, built `chunk_rows`
+/// rows at a time: the table with a weight per entry never exists whole. The rows keep relative
+/// sources (row_base, source_offset): rows whose weights, reflection bits and offsets from their
+/// first source agree share one block of the pools, so that a lattice's table is a few blocks and
+/// one base per row (docs/theory.md §4.7). Applied, it gives share_row_weights' sums term by term.
+void build_shared_cross_operator(const PointCloud& targets, const CellList& sources,
+                                 const OperatorOptions& options, WeightTable& table,
+                                 OperatorWorkspace& workspace, ShareWorkspace& share_workspace,
+                                 std::size_t chunk_rows = 8192);
 
 /// Applies `table` to `field_count` fields: out_values (may be null) gets the interpolation,
 /// out_gradient (may be null) gets dimension * field_count fields, gradient of field f along

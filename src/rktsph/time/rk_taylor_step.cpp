@@ -28,12 +28,14 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
   const std::size_t nv = reference.stress_points.size();
   const std::size_t ns = reference.sph_nodes.size();
   builder_.build(configuration, operators_);
+  if (policy == OperatorPolicy::ReferenceConfiguration)
+    builder_.release_buffers(operators_);  // built once: the buffers would only hold memory (§4.7)
   if (policy == OperatorPolicy::CurrentConfiguration) {
     // A stencil that degenerates as the body deforms (nodes squeezed into a line on a wall) takes
     // the uncorrected gradient and is counted; one that is degenerate from the start is an error
     // of the case, thrown by the build above (docs/theory.md §9.5).
     builder_.fall_back_on_degenerate_stencils();
-    builder_.keep_filter_weights_per_row();
+    builder_.keep_weights_per_row();
     builder_.keep_stencil_candidates(options.neighbour_search_distance * reference.spacing);
     // Searched again with the skin, and the filter built with a weight per row, as every later
     // search does, so that a restart searching from the configuration of the last search gets
@@ -42,6 +44,9 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
     motion_.emplace(reference);
     predicted_nodes_ = reference.sph_nodes;
   }
+  // Before the step's arrays are allocated: the scratch of what it derives from the tables then
+  // never adds up with them (§4.7).
+  bind_operators(configuration);
   for (int a = 0; a < d; ++a)
     for (int c = 0; c < d; ++c) {
       velocity_gradient_of_fields_.push_back(model.velocity_field(a) * d + c);
@@ -83,11 +88,12 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
   }
   half_step_ = FieldArray(nf, nv + ns);
   point_gradient_ = FieldArray(nf * d, nv);
-  point_rate_ = FieldArray(nf, nv);
+  // One array for the rates of step 1 (stress points) and step 2 (nodes): the first are dead
+  // before the second are computed.
+  rate_ = FieldArray(nf, std::max(nv, ns));
   point_internal_ = FieldArray(nk, nv);
   point_velocity_ = FieldArray(d, nv);
   node_gradient_ = FieldArray(nf * d, ns);
-  node_rate_ = FieldArray(nf, ns);
   hourglass_stiffness_ = build_hourglass_stiffness(reference, model, options.hourglass_stiffness);
   if (hourglass_stiffness_.active()) {
     hourglass_force_ = FieldArray(2, nv);
@@ -115,11 +121,9 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
     filter_values_.assign(values * ns, 0.0);
     filter_points_.assign(values * nv, 0.0);
     filter_round_trip_.assign(values * ns, 0.0);
-    filter_residual_.assign(values * ns, 0.0);
     if (model.pore_pressure_field() >= 0 && hourglass_fields_ == HourglassFields::All)
       pore_buffer_.assign(ns, 0.0);
   }
-  bind_operators(configuration);
   // On the first tables: it keeps the imposed stresses of t = 0 as its reference (eq. 3.8).
   strain_hourglass_stiffness_ = StrainHourglassStiffness(
       model, operators_.nodes_to_points, configuration.stress_points.volume,
@@ -152,12 +156,19 @@ void RkTaylorStep::bind_operators(const Configuration& configuration) {
       every_node_[i] = static_cast<std::int32_t>(i);
     build_adjoint_operator(operators_.nodes_to_points, configuration.stress_points.volume,
                            every_node_, no_own_value_, node_average_);
+    // Built once where the step's tables share their weights (a fixed lattice): so does their
+    // adjoint, whose interior rows are alike too (docs/theory.md §4.7).
+    if (!operators_.nodes_to_points.weight_start.empty()) {
+      ShareWorkspace workspace;
+      share_row_weights(node_average_.table, workspace);
+    }
   }
 }
 
 void RkTaylorStep::rebuild_operators(const Configuration& configuration) {
   if (!motion_) {  // a fixed configuration: everything again, as at the start
     builder_.build(configuration, operators_);
+    builder_.release_buffers(operators_);
     bind_operators(configuration);
     return;
   }
@@ -349,11 +360,12 @@ void RkTaylorStep::scale_momentum_rate(FieldArray& rate, std::size_t count,
 }
 
 void RkTaylorStep::add_half_step_displacement(State& state, double dt) const {
-  const std::size_t ns = state.displacement.point_count();
+  const auto ns = static_cast<std::int64_t>(state.displacement.point_count());
   for (int a = 0; a < model_.dimension(); ++a) {
     const double* v = state.fields.field(model_.velocity_field(a));
     double* u = state.displacement.field(a);
-    for (std::size_t i = 0; i < ns; ++i)
+#pragma omp parallel for schedule(static) if (ns > kParallelThreshold)
+    for (std::int64_t i = 0; i < ns; ++i)
       u[i] += 0.5 * dt * v[i];
   }
 }
@@ -367,17 +379,17 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
                    nullptr);
   for (int a = 0; a < model_.dimension(); ++a) {  // kept for the closure of step 2
     const int v = model_.velocity_field(a);
-    std::copy_n(half_step_.field(v), nodes_.stress_points.size(), point_velocity_.field(a));
+    parallel_copy(half_step_.field(v), nodes_.stress_points.size(), point_velocity_.field(a));
   }
-  model_.flux_rate(nodes_.stress_point_material, point_gradient_, point_rate_);
+  model_.flux_rate(nodes_.stress_point_material, point_gradient_, rate_);
   if (model_.objective_stress_rate()) {  // docs/theory.md eqs. 9.2, 9.3
     model_.rotate_stress(point_gradient_, velocity_gradient_of_fields_, 0.5 * dt,
                          nodes_.stress_points.size(), half_step_);
-    scale_momentum_rate(point_rate_, nodes_.stress_points.size(),
+    scale_momentum_rate(rate_, nodes_.stress_points.size(),
                         state.configuration.stress_points.volume.data(),
                         nodes_.stress_points.volume.data(), nullptr);
   }
-  model_.advance(nodes_.stress_point_material, point_rate_, state.time, 0.5 * dt, half_step_,
+  model_.advance(nodes_.stress_point_material, rate_, state.time, 0.5 * dt, half_step_,
                  point_internal_);
   if (hourglass_stiffness_.active()) {
     model_.flowing(nodes_.stress_point_material, half_step_, point_internal_, point_flowing_);
@@ -447,7 +459,7 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
                               dt, ns);
   if (!mean_update)
     strain_hourglass_stiffness_.integrate_strain(model_, node_gradient_, dt, state.strain);
-  model_.flux_rate(nodes_.node_material, node_gradient_, node_rate_);
+  model_.flux_rate(nodes_.node_material, node_gradient_, rate_);
   const auto& boundary = operators_.boundary_nodes;
   const int nf = model_.field_count();
   for (std::size_t r = 0; r < boundary.size(); ++r)
@@ -455,29 +467,29 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
       boundary_start_(f, r) = state.fields(f, static_cast<std::size_t>(boundary[r]));
   if (mean_velocity_.field_count() > 0)
     for (int a = 0; a < d; ++a)
-      std::copy_n(state.fields.field(model_.velocity_field(a)), ns, mean_velocity_.field(a));
+      parallel_copy(state.fields.field(model_.velocity_field(a)), ns, mean_velocity_.field(a));
   // The cells' hourglass forces at t + dt/2 (docs/theory.md eq. 3.9).
   if (hourglass_stiffness_.active()) {
     const std::array<int, 2> velocity{model_.velocity_field(0), model_.velocity_field(1)};
     advance_hourglass_force(hourglass_stiffness_, state.fields, velocity, 0.5 * dt,
                             hourglass_factor_, state.hourglass_force, hourglass_force_);
-    add_hourglass_acceleration(hourglass_stiffness_, hourglass_force_, velocity, node_rate_);
+    add_hourglass_acceleration(hourglass_stiffness_, hourglass_force_, velocity, rate_);
   }
   if (mean_update) {  // Phi^n of the fields advanced after the velocity (eq. 2.5)
     for (int f = 0; f < nf; ++f)
       if (model_.feeds_momentum_only(f))
-        std::copy_n(state.fields.field(f), ns, start_fields_.field(f));
-    std::copy(state.internal.data().begin(), state.internal.data().end(),
-              start_internal_.data().begin());
+        parallel_copy(state.fields.field(f), ns, start_fields_.field(f));
+    parallel_copy(state.internal.data().data(), state.internal.data().size(),
+                  start_internal_.data().data());
   }
   if (model_.objective_stress_rate()) {
     if (!mean_update)
       model_.rotate_stress(node_gradient_, velocity_gradient_of_fields_, dt, ns, state.fields);
-    scale_momentum_rate(node_rate_, ns, state.configuration.sph_nodes.volume.data(),
+    scale_momentum_rate(rate_, ns, state.configuration.sph_nodes.volume.data(),
                         nodes_.sph_nodes.volume.data(), nullptr);
   }
   // With the mean-velocity update only the velocity is advanced here; the rest after it (eq. 2.5).
-  model_.advance(nodes_.node_material, node_rate_, state.time, dt, state.fields, state.internal,
+  model_.advance(nodes_.node_material, rate_, state.time, dt, state.fields, state.internal,
                  mean_update ? AdvancedFields::Velocity : AdvancedFields::All);
   turn_surface(state, dt);  // to x^{n+1}: u holds u^n + (dt/2) v^n, v is v^{n+1}
   project_free_faces(boundary_start_, state.fields, false);
@@ -499,7 +511,9 @@ void RkTaylorStep::finish_with_mean_velocity(State& state, double dt) {
     for (int a = 0; a < d; ++a) {
       double* mean = mean_velocity_.field(a);
       const double* end = state.fields.field(model_.velocity_field(a));
-      for (std::size_t i = 0; i < ns; ++i)
+      const auto n = static_cast<std::int64_t>(ns);
+#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
+      for (std::int64_t i = 0; i < n; ++i)
         mean[i] = 0.5 * (mean[i] + end[i]);
     }
   if (options_.stress_update == StressUpdate::MeanVelocity)
@@ -522,7 +536,7 @@ void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
   const std::size_t ns = nodes_.sph_nodes.size();
   apply_operator(operators_.nodes_to_points, mean_velocity_, velocity_parities_, nullptr,
                  &mean_point_gradient_);
-  std::fill(mean_node_gradient_.data().begin(), mean_node_gradient_.data().end(), 0.0);
+  parallel_fill(mean_node_gradient_.data().data(), mean_node_gradient_.data().size(), 0.0);
   add_adjoint_interpolation(node_average_, mean_point_gradient_, velocity_gradient_parities_,
                             every_gradient_, mean_node_gradient_);
   if (model_.objective_stress_rate()) {  // x^{n+1} = x^n + dt v_bar: on x^{n+1/2} (eq. 9.5)
@@ -532,19 +546,19 @@ void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
   }
   for (int a = 0; a < d; ++a)
     for (int c = 0; c < d; ++c)
-      std::copy_n(mean_node_gradient_.field(a * d + c), ns,
-                  node_gradient_.field(model_.velocity_field(a) * d + c));
+      parallel_copy(mean_node_gradient_.field(a * d + c), ns,
+                    node_gradient_.field(model_.velocity_field(a) * d + c));
   const int pore = model_.pore_pressure_field();  // p^{n+1} is the projection's
   for (int f = 0; f < nf; ++f)
     if (model_.feeds_momentum_only(f) && f != pore)
-      std::copy_n(start_fields_.field(f), ns, state.fields.field(f));
-  std::copy(start_internal_.data().begin(), start_internal_.data().end(),
-            state.internal.data().begin());
+      parallel_copy(start_fields_.field(f), ns, state.fields.field(f));
+  parallel_copy(start_internal_.data().data(), start_internal_.data().size(),
+                state.internal.data().data());
   strain_hourglass_stiffness_.integrate_strain(model_, node_gradient_, dt, state.strain);
-  model_.flux_rate(nodes_.node_material, node_gradient_, node_rate_);
+  model_.flux_rate(nodes_.node_material, node_gradient_, rate_);
   if (model_.objective_stress_rate())  // with the spin of the mean velocity (eq. 9.2)
     model_.rotate_stress(mean_node_gradient_, velocity_gradient_of_velocity_, dt, ns, state.fields);
-  model_.advance(nodes_.node_material, node_rate_, state.time, dt, state.fields, state.internal,
+  model_.advance(nodes_.node_material, rate_, state.time, dt, state.fields, state.internal,
                  AdvancedFields::Others);
   project_free_faces(boundary_start_, state.fields, false);
   conditions_.apply(state.time + dt, state.fields);
@@ -569,15 +583,17 @@ void RkTaylorStep::close_incomplete_nodes(const State& state) {
     for (int a = 0; a < d; ++a) {
       const int v = model_.velocity_field(a);
       const auto parity = static_cast<unsigned>(model_.parities()[static_cast<std::size_t>(v)]);
+      const std::int64_t offset = step2.weight_offset(node);  // shared weights (§4.7)
       for (auto k = static_cast<std::size_t>(step2.row_start[node]);
            k < static_cast<std::size_t>(step2.row_start[node + 1]); ++k) {
         const auto source = static_cast<std::size_t>(step2.source[k]);
+        const auto weight = static_cast<std::size_t>(static_cast<std::int64_t>(k) + offset);
         const double level_n =
             (source < nv ? point_velocity_(a, source) : state.fields(v, source - nv)) *
-            (step2.has_reflections ? reflection_sign(step2.reflection[k], parity) : 1.0);
+            (step2.has_reflections ? reflection_sign(step2.reflection[weight], parity) : 1.0);
         for (int c = 0; c < d; ++c)
           node_gradient_(v * d + c, node) -=
-              step2.gradient[static_cast<std::size_t>(c)][k] * level_n;
+              step2.gradient[static_cast<std::size_t>(c)][weight] * level_n;
       }
     }
   }
@@ -655,19 +671,21 @@ void RkTaylorStep::filter_hourglass(FieldArray& fields, FilterPart part) {
     for (int f = 0; f < nf; ++f)
       values[i * nf + f] = fields.field(filtered[f])[i];
   round_trip(filter_values_);
-  double* residual = filter_residual_.data();
+  // The residual in place of the copies: the fields still hold the values.
+  double* residual = filter_values_.data();
   const double* trip = filter_round_trip_.data();
   const auto count = nodes * nf;
 #pragma omp parallel for schedule(static) if (count > kParallelThreshold)
   for (std::int64_t k = 0; k < count; ++k)
     residual[k] = values[k] - trip[k];
-  round_trip(filter_residual_);
+  round_trip(filter_values_);
   const double kappa = options_.hourglass_kappa;
 #pragma omp parallel for schedule(static) if (nodes > kParallelThreshold)
   for (std::int64_t i = 0; i < nodes; ++i)
-    for (int f = 0; f < nf; ++f)
-      fields.field(filtered[f])[i] =
-          values[i * nf + f] - kappa * (residual[i * nf + f] - trip[i * nf + f]);
+    for (int f = 0; f < nf; ++f) {
+      double& value = fields.field(filtered[f])[i];
+      value = value - kappa * (residual[i * nf + f] - trip[i * nf + f]);
+    }
   if (pore >= 0) {
     std::copy_n(pore_buffer_.begin(), count_nodes, fields.field(pore));
     shift_normal_stress(1.0);

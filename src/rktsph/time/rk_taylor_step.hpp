@@ -168,7 +168,7 @@ class RkTaylorStep {
   // Scratch, allocated once.
   FieldArray half_step_;  // [stress points ; SPH nodes] at t + dt/2
   FieldArray point_gradient_;
-  FieldArray point_rate_;
+  FieldArray rate_;  // the stress points' rates in step 1, then the nodes' in step 2
   FieldArray point_internal_;
   FieldArray point_velocity_;  // I(v^n) at the stress points (axis a), before their half step
   FieldArray boundary_values_;
@@ -177,14 +177,12 @@ class RkTaylorStep {
   FieldArray boundary_rate_;
   FieldArray boundary_internal_;
   FieldArray node_gradient_;
-  FieldArray node_rate_;
   FieldArray hourglass_force_;               // k q of every cell at t + dt/2 (eq. 3.9)
   std::vector<double> hourglass_factor_;     // 1, or psi in flowing cells
   std::vector<std::uint8_t> point_flowing_;  // of the stress points' half-step state
-  std::vector<double> filter_values_;        // node-major copies for the filter's round trip
+  std::vector<double> filter_values_;  // node-major copies for the round trip, then its residual
   std::vector<double> filter_points_;
   std::vector<double> filter_round_trip_;
-  std::vector<double> filter_residual_;
   std::vector<double> pore_buffer_;  // p_w kept out of the filter (saturated model)
   // The mean-velocity stress update (eq. 2.5) and the hourglass forces (eq. 3.9).
   AdjointOperator node_average_;  // lumped average over every node

@@ -270,6 +270,16 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration, 
         fmt::format("the boundary node at {} has a degenerate collocated stencil",
                     describe_point(nodes, static_cast<std::size_t>(
                                               ops.boundary_nodes[report.degenerate_rows[0]]))));
+  if (share_weights_) {
+    // On a lattice the interior rows of both tables have one stencil each: the step then streams
+    // 4 bytes per entry instead of 29 (docs/theory.md §4.7). After the closure, which is built
+    // from the rows as computed. Tables that share are built once: their scratch is freed before
+    // the filter's tables are built, so that the two never add up.
+    share_row_weights(ops.nodes_to_points, share_workspace_);
+    share_row_weights(ops.points_to_nodes, share_workspace_);
+    workspace_ = OperatorWorkspace{};
+    share_workspace_ = ShareWorkspace{};
+  }
 }
 
 void StepOperatorBuilder::degenerate(std::size_t rows, StepOperators& operators,
@@ -290,16 +300,37 @@ void StepOperatorBuilder::build_filter_tables(const Configuration& configuration
   cell_list_seconds_ += lap(clock);
   const CellList& filter_node_cells = node_cells_;
   const CellList& filter_point_cells = point_cells_;
+  if (share_weights_) {
+    // Interior rows share one stencil: less memory traffic in the filter (docs/theory.md §3.3).
+    // Built and shared a chunk of rows at a time, so that the table with a weight per entry, six
+    // times the shared one, never exists whole (§4.7).
+    build_shared_cross_operator(configuration.stress_points, filter_node_cells, filter_options,
+                                ops.filter_to_points, workspace_, share_workspace_);
+    build_shared_cross_operator(configuration.sph_nodes, filter_point_cells, filter_options,
+                                ops.filter_to_nodes, workspace_, share_workspace_);
+    return;
+  }
   // The round trip only interpolates: the gradient weights are computed in scratch, not kept.
   build_cross_operator(configuration.stress_points, filter_node_cells, filter_options,
                        ops.filter_to_points, workspace_, nullptr, TableWeights::InterpolationOnly);
   build_cross_operator(configuration.sph_nodes, filter_point_cells, filter_options,
                        ops.filter_to_nodes, workspace_, nullptr, TableWeights::InterpolationOnly);
-  // Interior rows share one stencil: less memory traffic in the filter (docs/theory.md §3.3).
-  if (share_filter_weights_) {
-    share_row_weights(ops.filter_to_points, share_workspace_);
-    share_row_weights(ops.filter_to_nodes, share_workspace_);
-  }
+}
+
+void StepOperatorBuilder::release_buffers(StepOperators& operators) {
+  for (WeightTable* table : {&operators.nodes_to_points, &operators.points_to_nodes,
+                             &operators.boundary_gradient, &operators.incomplete_closure.table,
+                             &operators.filter_to_points, &operators.filter_to_nodes})
+    shrink_table(*table);
+  workspace_ = OperatorWorkspace{};
+  share_workspace_ = ShareWorkspace{};
+  retry_stencils_ = {};
+  candidate_scratch_ = {};
+  point_row_candidates_ = {};
+  node_row_candidates_ = {};
+  boundary_row_candidates_ = {};
+  node_cells_ = CellList{};
+  point_cells_ = CellList{};
 }
 
 }  // namespace rktsph

@@ -96,10 +96,10 @@ class StepOperatorBuilder {
   /// From now on a row whose stencil cannot be made regular takes the uncorrected gradient and is
   /// counted in StepOperators::fallback_rows, instead of stopping the run (moving configurations).
   void fall_back_on_degenerate_stencils() { fall_back_ = true; }
-  /// From now on the filter's rows keep their own weights instead of sharing them by stencil: on a
-  /// moving configuration no two rows are alike, so the sharing pass would cost a quarter of the
-  /// rebuild and save nothing (docs/theory.md §9.5).
-  void keep_filter_weights_per_row() { share_filter_weights_ = false; }
+  /// From now on the rows of the step's and the filter's tables keep their own weights instead of
+  /// sharing them by stencil (docs/theory.md §4.7): on a moving configuration no two rows are
+  /// alike, so the sharing pass would cost a quarter of the rebuild and save nothing (§9.5).
+  void keep_weights_per_row() { share_weights_ = false; }
   /// From now on the step's stencils come from a neighbour list with a skin (docs/theory.md §9.5):
   /// every source within the support plus 2 `search_distance` [m] of each row's target, searched
   /// in the cell lists when build_step_tables is asked to search; the builds in between pick each
@@ -107,6 +107,10 @@ class StepOperatorBuilder {
   /// more than `search_distance` since the search (no pair has then come closer by more than
   /// twice that). A distance of 0 keeps a search in every build.
   void keep_stencil_candidates(double search_distance) { candidate_skin_ = 2.0 * search_distance; }
+  /// Frees the buffers kept for the next build (the row blocks, the sharing workspace, the cell
+  /// lists and candidate lists) and the capacity of the tables of `operators` beyond their sizes:
+  /// a fixed configuration builds once (docs/theory.md §4.7). A later build grows them again.
+  void release_buffers(StepOperators& operators);
   /// The wall time every build so far spent on the neighbour search's cell lists [s].
   double cell_list_seconds() const { return cell_list_seconds_; }
 
@@ -121,7 +125,7 @@ class StepOperatorBuilder {
   // copied into later builds' operators (a moving configuration keeps its topology, §9.1).
   bool classified_ = false;
   bool fall_back_ = false;
-  bool share_filter_weights_ = true;
+  bool share_weights_ = true;
   double candidate_skin_ = 0.0;  // [m]; 0: every build searches the cell lists at the support
   struct CandidateTable {
     std::vector<std::int64_t> start;  // row r: entries[start[r], start[r + 1])
