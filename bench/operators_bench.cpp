@@ -119,8 +119,9 @@ OperatorSetup& setup_for(std::int64_t per_side, std::int64_t h_over_dx_percent,
 /// arrays are read, also in 2D), the source fields and the outputs. A lower bound on memory
 /// traffic, so bytes/s is comparable with the machine's stream bandwidth.
 double compulsory_bytes(const WeightTable& table, const FieldArray& input) {
+  // Source, reflection, interpolation and a gradient per axis of the table's dimension.
   const double per_entry = sizeof(std::int32_t) + (table.has_reflections ? 1.0 : 0.0) +
-                           4.0 * sizeof(double);  // source, reflection, interpolation, 3 gradients
+                           (1.0 + table.dimension) * sizeof(double);
   const double rows = static_cast<double>(table.rows());
   return static_cast<double>(table.entries()) * per_entry + (rows + 1.0) * sizeof(std::int64_t) +
          static_cast<double>(input.data().size()) * sizeof(double) +

@@ -67,7 +67,7 @@ def metrics(probes, spacing):
     arrival = first_crossing(t, mid_velocity, 0.5 * PISTON_VELOCITY)
     plateau = statistics.fmean(window(t, mid_stress, 0.75 * TRANSIT, 1.3 * TRANSIT))
     result = {
-        "arrival_error_dx": (arrival - 0.5 * TRANSIT) / (spacing / WAVE_SPEED),
+        "arrival_error_dx": abs(arrival - 0.5 * TRANSIT) / (spacing / WAVE_SPEED),
         "sigma_xx_plateau_error": abs(plateau / -IMPEDANCE_STRESS - 1.0),
         "overshoot": max(window(t, mid_velocity, 0.0, 1.3 * TRANSIT)) / PISTON_VELOCITY - 1.0,
         "max_vy_ratio": max(abs(v) for v in probes["all.velocity_y"]) / PISTON_VELOCITY,

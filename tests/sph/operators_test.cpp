@@ -322,7 +322,7 @@ TEST(SharedWeights, InterleavedApplyMatchesApplyOperatorAndInteriorRowsShareOneS
   ASSERT_EQ(shared.weight_start.size(), table.rows());
   EXPECT_LT(shared.interpolation.size() * 4, table.interpolation.size());
   EXPECT_EQ(shared.reflection.size(), shared.interpolation.size());
-  // Re-sharing is a no-op; a table with gradients cannot be shared.
+  // Re-sharing is a no-op.
   const std::size_t pool = shared.interpolation.size();
   share_row_weights(shared);
   EXPECT_EQ(shared.interpolation.size(), pool);

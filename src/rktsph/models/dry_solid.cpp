@@ -217,8 +217,9 @@ void DrySolid::flux_rate(std::span<const std::int32_t> material, const FieldArra
 void DrySolid::advance_velocities(std::int64_t n, const FieldArray& rate, double time,
                                   double interval, FieldArray& values) const {
   // v' = R_v + b(t) - xi(t) v, classical RK4 with sub-steps when xi * interval is large. The loads
-  // are the same for every node: evaluated once per sub-step, with the nodes inside the sub-step
-  // (each node's arithmetic is the node-by-node loop's). Points [0, n) of the arrays.
+  // are the same for every node: evaluated once per sub-step before the node loop, which then
+  // does each node's sub-steps in one pass (the arithmetic of a node-by-node evaluation).
+  // Points [0, n) of the arrays.
   const int d = dimension();
   const double stiffness = loads_.damping_at(time);
   const int substeps =
@@ -226,35 +227,36 @@ void DrySolid::advance_velocities(std::int64_t n, const FieldArray& rate, double
                  integration_.max_substeps);
   const double delta = interval / substeps;
   const bool frozen = integration_.frozen_flux;
+  std::vector<SubstepLoads>& loads = substep_loads_;
+  if (loads.size() < static_cast<std::size_t>(substeps))
+    loads.resize(static_cast<std::size_t>(substeps));
   for (int s = 0; s < substeps; ++s) {
     const double t0 = time + s * delta;
-    const Vec3 b0 = loads_.body_force(t0), b1 = loads_.body_force(t0 + 0.5 * delta),
-               b2 = loads_.body_force(t0 + delta);
-    const double x0 = loads_.damping_at(t0), x1 = loads_.damping_at(t0 + 0.5 * delta),
-                 x2 = loads_.damping_at(t0 + delta);
-    for (int a = 0; a < d; ++a) {
-      const auto axis = static_cast<std::size_t>(a);
-      double* v = values.field(layout_.velocity(a));
-      const double* rate_v = rate.field(layout_.velocity(a));
+    loads[static_cast<std::size_t>(s)] = {
+        {loads_.body_force(t0), loads_.body_force(t0 + 0.5 * delta), loads_.body_force(t0 + delta)},
+        {loads_.damping_at(t0), loads_.damping_at(t0 + 0.5 * delta),
+         loads_.damping_at(t0 + delta)}};
+  }
+  for (int a = 0; a < d; ++a) {
+    const auto axis = static_cast<std::size_t>(a);
+    double* velocity = values.field(layout_.velocity(a));
+    const double* rate_v = rate.field(layout_.velocity(a));
 #pragma omp parallel for schedule(static) if (n > kParallelThreshold)
-      for (std::int64_t i = 0; i < n; ++i) {
-        const double r = frozen ? rate_v[i] : 0.0;
-        const double k1 = r + b0[axis] - x0 * v[i];
-        const double k2 = r + b1[axis] - x1 * (v[i] + 0.5 * delta * k1);
-        const double k3 = r + b1[axis] - x1 * (v[i] + 0.5 * delta * k2);
-        const double k4 = r + b2[axis] - x2 * (v[i] + delta * k3);
-        v[i] += delta / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    for (std::int64_t i = 0; i < n; ++i) {
+      double v = velocity[i];
+      const double r = frozen ? rate_v[i] : 0.0;
+      for (int s = 0; s < substeps; ++s) {
+        const SubstepLoads& l = loads[static_cast<std::size_t>(s)];
+        const double k1 = r + l.body[0][axis] - l.damping[0] * v;
+        const double k2 = r + l.body[1][axis] - l.damping[1] * (v + 0.5 * delta * k1);
+        const double k3 = r + l.body[1][axis] - l.damping[1] * (v + 0.5 * delta * k2);
+        const double k4 = r + l.body[2][axis] - l.damping[2] * (v + delta * k3);
+        v += delta / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
       }
+      if (!frozen) v += interval * rate_v[i];
+      velocity[i] = v;
     }
   }
-  if (!frozen)
-    for (int a = 0; a < d; ++a) {
-      double* v = values.field(layout_.velocity(a));
-      const double* rate_v = rate.field(layout_.velocity(a));
-#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
-      for (std::int64_t i = 0; i < n; ++i)
-        v[i] += interval * rate_v[i];
-    }
 }
 
 void DrySolid::stress_source(const Material& material, const StiffnessMatrix& stiffness,

@@ -109,6 +109,14 @@ class DrySolid : public PhysicsModel {
   template <int Dimension, int StressCount>
   void flux_rate_fixed(std::span<const std::int32_t> material, const FieldArray& gradient,
                        FieldArray& rate) const;
+  /// The body force and damping at the start, middle and end of one sub-step of the velocity.
+  struct SubstepLoads {
+    std::array<Vec3, 3> body;
+    std::array<double, 3> damping;
+  };
+  /// Scratch of advance_velocities: the loads of each sub-step, evaluated once per call (it only
+  /// grows, up to the largest sub-step count used; advance is not called concurrently).
+  mutable std::vector<SubstepLoads> substep_loads_;
   /// The velocity part of advance(), points [0, n) of `values`.
   void advance_velocities(std::int64_t n, const FieldArray& rate, double time, double interval,
                           FieldArray& values) const;

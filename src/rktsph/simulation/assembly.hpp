@@ -29,8 +29,9 @@ struct SimulationLimits {
 /// Resident memory of a run [bytes] of `model` with this many SPH nodes, lattice points of the
 /// node lookup and smoothing length h/dx: measured peak RSS per node (/usr/bin/time -v, runs of
 /// 1.5e5-1.6e5 nodes, docs/input-reference.md "Limits"): at h = 0.75 dx 1.26 KB for the dry model,
-/// 2.6 KB saturated, 3.7 KB on a moving configuration; 4.2 KB dry at 1.3 dx. Rounded up, plus
-/// 6 KB per unit of h/dx above 0.75 and 4 bytes per lattice point.
+/// 2.6 KB saturated, 3.7 KB on a moving configuration; at 1.3 dx 4.2, 5.0 and 6.0 KB. Rounded up,
+/// plus 6 KB per unit of h/dx above 0.75 (an upper bound of the three slopes) and 4 bytes per
+/// lattice point.
 double estimated_run_memory(ModelKind model, double sph_nodes, double lattice_points,
                             double h_over_dx);
 

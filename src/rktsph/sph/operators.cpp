@@ -449,7 +449,8 @@ void compute(int dimension, const OperatorOptions& options, const RowTarget& tar
   const std::size_t first = block.entries;
   const std::size_t end = first + row_size(block.stencil.size(), target.reference);
   const auto axes = static_cast<std::size_t>(dimension);
-  if (block.source.size() < end) {  // grows geometrically, then never again
+  // Grows geometrically, then never again (and for a higher dimension than the block has seen).
+  if (block.source.size() < end || block.gradient[axes - 1].size() < end) {
     block.source.resize(end);
     block.reflection.resize(end);
     block.interpolation.resize(end);
@@ -859,7 +860,7 @@ bool same_key(const ShareWorkspace& w, std::int64_t begin, std::int64_t end,
   const std::uint8_t* reflection = table.reflection.data() + pool_start;
   for (std::int64_t k = 0; k < length; ++k)
     if (w.reflection[static_cast<std::size_t>(begin + k)] != reflection[k]) return false;
-  if (w.relative_sources) {
+  if (w.relative_sources && length > 0) {
     const std::int32_t* offset = table.source_offset.data() + pool_start;
     const std::int32_t base = w.source[static_cast<std::size_t>(begin)];
     for (std::int64_t k = 0; k < length; ++k)
@@ -880,6 +881,12 @@ bool same_key(const ShareWorkspace& w, std::int64_t begin, std::int64_t end,
 
 void begin_shared_table(std::size_t row_count, int dimension, bool gradient, bool relative_sources,
                         WeightTable& table, ShareWorkspace& workspace) {
+  // The gradient readers (differentiate_rows, the adjoint builder's products) take a source per
+  // entry: relative sources are for interpolation-only tables.
+  if (gradient && relative_sources)
+    throw std::invalid_argument(
+        "begin_shared_table: relative sources need an interpolation-only "
+        "table");
   table.dimension = dimension;
   table.row_start.assign(1, 0);
   table.row_start.reserve(row_count + 1);
@@ -1047,6 +1054,8 @@ void build_shared_cross_operator(const PointCloud& targets, const CellList& sour
                                  const OperatorOptions& options, WeightTable& table,
                                  OperatorWorkspace& workspace, ShareWorkspace& share_workspace,
                                  std::size_t chunk_rows) {
+  if (chunk_rows == 0)
+    throw std::invalid_argument("build_shared_cross_operator: chunks need at least one row");
   const std::size_t row_count = targets.size();
   begin_shared_table(row_count, targets.dimension, false, true, table, share_workspace);
   WeightTable& chunk = share_workspace.chunk;

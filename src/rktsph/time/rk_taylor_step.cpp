@@ -27,6 +27,8 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
   const int d = model.dimension();
   const std::size_t nv = reference.stress_points.size();
   const std::size_t ns = reference.sph_nodes.size();
+  // On a moving configuration no two rows are alike: no sharing from the first build (§4.7).
+  if (policy == OperatorPolicy::CurrentConfiguration) builder_.keep_weights_per_row();
   builder_.build(configuration, operators_);
   if (policy == OperatorPolicy::ReferenceConfiguration)
     builder_.release_buffers(operators_);  // built once: the buffers would only hold memory (§4.7)
@@ -35,7 +37,6 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
     // the uncorrected gradient and is counted; one that is degenerate from the start is an error
     // of the case, thrown by the build above (docs/theory.md §9.5).
     builder_.fall_back_on_degenerate_stencils();
-    builder_.keep_weights_per_row();
     builder_.keep_stencil_candidates(options.neighbour_search_distance * reference.spacing);
     // Searched again with the skin, and the filter built with a weight per row, as every later
     // search does, so that a restart searching from the configuration of the last search gets
