@@ -544,6 +544,17 @@ void report_degenerate(const OperatorWorkspace& workspace, std::size_t rows,
     if (!workspace.regular[r]) report->degenerate_rows.push_back(static_cast<std::int32_t>(r));
 }
 
+// The gather of a cross-set row: target `first` + r, its stencil from the cell list, referenced to
+// the Shepard centroid.
+auto cross_rows(const PointCloud& targets, const CellList& sources, const OperatorOptions& options,
+                std::size_t first = 0) {
+  return [&targets, &sources, &options, first](std::size_t r, std::vector<StencilSource>& stencil) {
+    const Vector x = targets.point(first + r);
+    gather_stencil(x, sources, options, -1, stencil);
+    return RowTarget{x, GradientReference::ShepardCentroid, -1};
+  };
+}
+
 }  // namespace
 
 void build_cross_operator(const PointCloud& targets, const CellList& sources,
@@ -551,11 +562,7 @@ void build_cross_operator(const PointCloud& targets, const CellList& sources,
                           OperatorWorkspace& workspace, StencilReport* report,
                           TableWeights weights) {
   build_rows(targets.size(), targets.dimension, options, weights, table, workspace,
-             [&](std::size_t i, std::vector<StencilSource>& stencil) {
-               const Vector x = targets.point(i);
-               gather_stencil(x, sources, options, -1, stencil);
-               return RowTarget{x, GradientReference::ShepardCentroid, -1};
-             });
+             cross_rows(targets, sources, options));
   report_degenerate(workspace, targets.size(), report);
 }
 
@@ -980,14 +987,7 @@ void append_shared_rows(const WeightTable& chunk, WeightTable& table, ShareWorks
   // Serial, in row order, so that the first row of each key owns the pool's copy: an
   // open-addressing table of the owners, probed by hash and confirmed on the whole key.
   const std::size_t mask = w.slot.size() - 1;
-  const std::size_t done = table.rows();
-  if (!relative && done > 0 && table.source.capacity() < table.source.size() + entries) {
-    // Grow to the rows' mean length so far times all rows, not by doubling: the source indices
-    // are the table's bulk, and a doubled array would be up to twice what it needs.
-    const double per_row = static_cast<double>(table.source.size()) / static_cast<double>(done);
-    const auto estimate = static_cast<std::size_t>(per_row * static_cast<double>(w.rows) * 1.02);
-    table.source.reserve(std::max(estimate, table.source.size() + 2 * entries));
-  }
+  if (!relative) table.source.reserve(table.source.size() + entries);  // one growth per chunk
   for (std::size_t row = 0; row < row_count; ++row) {
     const std::int64_t begin = chunk.row_start[row], end = chunk.row_start[row + 1];
     const auto length = end - begin;
@@ -1062,11 +1062,7 @@ void build_shared_cross_operator(const PointCloud& targets, const CellList& sour
   for (std::size_t first = 0; first < row_count; first += chunk_rows) {
     const std::size_t count = std::min(chunk_rows, row_count - first);
     build_rows(count, targets.dimension, options, TableWeights::InterpolationOnly, chunk, workspace,
-               [&](std::size_t r, std::vector<StencilSource>& stencil) {
-                 const Vector x = targets.point(first + r);
-                 gather_stencil(x, sources, options, -1, stencil);
-                 return RowTarget{x, GradientReference::ShepardCentroid, -1};
-               });
+               cross_rows(targets, sources, options, first));
     append_shared_rows(chunk, table, share_workspace);
   }
 }
