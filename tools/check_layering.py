@@ -14,6 +14,7 @@ import tempfile
 # Bottom to top. A folder may include its own layer and every layer before it.
 LAYERS = [
     "core",           # errors, field arrays, checkpoint streams, time functions
+    "linear_algebra", # sparse rows, conjugate gradients, smoothed-aggregation multigrid
     "sph",            # kernels, neighbour search, corrective operator tables, Laplacian
     "case",           # case file -> CaseDescription
     "geometry",       # shapes -> reference configuration, groups

@@ -7,6 +7,9 @@
 #    serial table-build benchmark once, medians of RKTSPH_BENCH_REPETITIONS runs.
 # 2. The full step on BAR-WAVE-2D per size and thread count, one process each, so that the peak
 #    resident memory (from /usr/bin/time -v) belongs to that size alone.
+# 3. The moving-configuration step (large-deformation model).
+# 4. The saturated model's pressure solve: its share of the step on vpw-strip-footing-elastic and
+#    on a 10^6-node consolidation column (rktsph runs, read from their summary.json).
 #
 # Settings (environment):
 #   RKTSPH_BENCH_THREADS      thread counts, default "1 2"
@@ -16,6 +19,9 @@
 #                             (XL at one thread alone would take about 80 s per repetition)
 #   RKTSPH_BENCH_XL_REPETITIONS  default 1
 #   RKTSPH_BENCH_KERNELS      0 skips part 1
+#   RKTSPH_BENCH_MOVING       0 skips the moving-configuration step
+#   RKTSPH_BENCH_PRESSURE     0 skips the saturated model's pressure solve
+#   RKTSPH_BENCH_COLUMN_STEPS steps of the 10^6-node saturated column, default 60
 #   RKTSPH_BENCH_OUT          directory for the JSON results and logs, default BUILD_DIR/bench
 # Exits non-zero only if a benchmark program fails (or reports an error).
 set -uo pipefail
@@ -290,6 +296,69 @@ if target is not None:
     verdict = "met" if target >= 3e6 else "NOT met"
     print(f"\nTarget >= 3.0e6 particle-steps/s on the moving BAR-WAVE-2D L with 2 threads: "
           f"{verdict} ({target:.3e}).")
+PYTHON
+  then
+    failures=$((failures + 1))
+  fi
+fi
+
+if [[ ${RKTSPH_BENCH_PRESSURE:-1} != 0 ]]; then
+  echo
+  echo "== pressure solve of the saturated model (default multigrid preconditioner; 2 threads):"
+  echo "   vpw-strip-footing-elastic (full run), and the vpw-consolidation column at dx = 2/256 m"
+  echo "   (257 x 3841 = 987 137 nodes; ${RKTSPH_BENCH_COLUMN_STEPS:-60} steps at a fixed dt of 8e-5 s)"
+  rktsph_program=$build_dir/rktsph
+  cases_dir=$(cd "$(dirname "$0")/.." && pwd)/cases
+  column_steps=${RKTSPH_BENCH_COLUMN_STEPS:-60}
+  pressure_records=$out_dir/pressure.tsv
+  : >"$pressure_records"
+  run_pressure_case() {
+    local name=$1 case_file=$2
+    shift 2
+    local run_dir=$out_dir/pressure-$name
+    local timing=$out_dir/pressure-$name.time load
+    load=$(cut -d' ' -f1 /proc/loadavg)
+    rm -rf "$run_dir"
+    if OMP_NUM_THREADS=2 ${time_program:+$time_program -v -o "$timing"} "$rktsph_program" run \
+      "$case_file" --output "$run_dir" "$@" >"$out_dir/pressure-$name.log" 2>&1; then
+      printf '%s\t%s\t%s\t%s\n' "$name" "$run_dir/summary.json" \
+        "$(awk -F': ' '/Maximum resident set size/ {print $2}' "$timing" 2>/dev/null)" "$load" \
+        >>"$pressure_records"
+    else
+      echo "FAILED: $name (see $out_dir/pressure-$name.log)"
+      failures=$((failures + 1))
+    fi
+  }
+  run_pressure_case strip-footing "$cases_dir"/vpw-strip-footing-elastic/case.yaml
+  run_pressure_case column-1M "$cases_dir"/vpw-consolidation/case.yaml --set geometry.spacing=0.0078125 \
+    --set numerics.time_step=8e-5 --set "time.end=$(python3 -c "print($column_steps * 8e-5)")" \
+    --set output.interval=0 --set output.probe_interval=0
+  if [[ -s $pressure_records ]] && ! python3 - "$pressure_records" <<'PYTHON'
+import json
+import sys
+
+# The pressure solve's share of the step (docs/theory.md §6.7; target: at most 30 %).
+print(f"{'run':<14}  {'nodes':>9}  {'steps':>5}  {'s/step':>8}  {'iterations':>10}  {'levels':>6}  "
+      f"{'solve share':>11}  {'projection':>10}  {'peak RSS MB':>11}  {'load':>5}")
+shares = []
+with open(sys.argv[1]) as records:
+    for line in records:
+        name, path, rss_kb, load = line.rstrip("\n").split("\t")
+        with open(path) as handle:
+            summary = json.load(handle)
+        solver = summary["pressure_solver"]
+        steps = summary["steps"]
+        step_seconds = sum(summary["step_time"].values())
+        rss = f"{int(rss_kb) / 1024:.0f}" if rss_kb else "-"
+        print(f"{name:<14}  {summary['sph_nodes']:>9}  {steps:>5}  {step_seconds / steps:>8.4f}  "
+              f"{solver['mean_iterations']:>10.2f}  {solver.get('multigrid_levels', 0):>6}  "
+              f"{solver['solve_share']:>10.1%}  {solver['projection_share']:>9.1%}  {rss:>11}  "
+              f"{load:>5}")
+        shares.append((name, solver["solve_share"]))
+print()
+for name, share in shares:
+    print(f"Target pressure solve <= 30 % of the step on {name}: "
+          f"{'met' if share <= 0.30 else 'NOT met'} ({share:.1%}).")
 PYTHON
   then
     failures=$((failures + 1))

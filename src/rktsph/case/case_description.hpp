@@ -133,16 +133,19 @@ struct InitialConditionsSpec {
   SourceLocation where;
 };
 
+/// Preconditioner of the conjugate-gradient pore-pressure solve (docs/theory.md §6.7).
+enum class PressurePreconditioner { Jacobi, IncompleteCholesky, Multigrid };
+
 /// Pore water and the pressure solve of the saturated v-pw model (docs/theory.md §6).
 struct PoreFluidSpec {
-  double bulk_modulus = 2.2e9;              ///< K_w [Pa]
-  double density = 1000.0;                  ///< rho_w [kg/m^3]
-  double porosity = 0.3;                    ///< n [-]
-  double hydraulic_conductivity = 0.0;      ///< Darcy k [m/s]; k_bar = k / (rho_w g)
-  double gravity = 9.81;                    ///< g [m/s^2] of the conversion k -> k_bar
-  double biot_coefficient = 1.0;            ///< alpha
-  double projection_beta = 1.0;             ///< incremental projection (1) or not (0)
-  bool incomplete_cholesky = false;         ///< preconditioner: IC instead of Jacobi
+  double bulk_modulus = 2.2e9;          ///< K_w [Pa]
+  double density = 1000.0;              ///< rho_w [kg/m^3]
+  double porosity = 0.3;                ///< n [-]
+  double hydraulic_conductivity = 0.0;  ///< Darcy k [m/s]; k_bar = k / (rho_w g)
+  double gravity = 9.81;                ///< g [m/s^2] of the conversion k -> k_bar
+  double biot_coefficient = 1.0;        ///< alpha
+  double projection_beta = 1.0;         ///< incremental projection (1) or not (0)
+  PressurePreconditioner preconditioner = PressurePreconditioner::Multigrid;
   double solver_tolerance = 1e-8;           ///< relative residual of the conjugate gradient
   long solver_max_iterations = 0;           ///< 0: twice the number of nodes
   double laplacian_scale = 0.0;             ///< 0: computed so that L(|x|^2) = 2d in the interior

@@ -40,7 +40,7 @@ PressureProjection::PressureProjection(const SaturatedVpw& model, const NodeSets
       tolerance_(fluid.solver_tolerance),
       checkerboard_theta_(fluid.checkerboard_stabilisation),
       max_iterations_(fluid.solver_max_iterations),
-      incomplete_cholesky_(fluid.incomplete_cholesky),
+      preconditioner_(fluid.preconditioner),
       solvers_(std::make_unique<Solvers>()) {
   const auto start = std::chrono::steady_clock::now();
   const std::size_t n = nodes.sph_nodes.size();
@@ -134,7 +134,15 @@ void PressureProjection::assemble(double dt) {
   assembled_dt_ = dt;
 
   Solvers& s = *solvers_;
-  if (incomplete_cholesky_) {
+  if (preconditioner_ == PressurePreconditioner::Multigrid) {
+    system_rows_ = SparseRows(system_);
+    system_rows_.makeCompressed();
+    multigrid_ = std::make_unique<SmoothedAggregation>(system_rows_);
+    conjugate_gradient_ =
+        std::make_unique<ConjugateGradient>(static_cast<std::size_t>(system_rows_.rows()));
+    statistics_.multigrid_levels = multigrid_->levels();
+    statistics_.multigrid_complexity = multigrid_->operator_complexity();
+  } else if (preconditioner_ == PressurePreconditioner::IncompleteCholesky) {
     s.cholesky.setTolerance(tolerance_);
     s.cholesky.setMaxIterations(max_iterations_);
     s.cholesky.compute(system_);
@@ -180,7 +188,14 @@ void PressureProjection::solve(double time) {
   long iterations;
   double error;
   bool converged;
-  if (incomplete_cholesky_) {
+  if (preconditioner_ == PressurePreconditioner::Multigrid) {
+    pressure_ = guess_;
+    const ConjugateGradientResult result = conjugate_gradient_->solve(
+        system_rows_, *multigrid_, rhs_.data(), pressure_.data(), tolerance_, max_iterations_);
+    iterations = result.iterations;
+    error = result.relative_residual;
+    converged = result.converged;
+  } else if (preconditioner_ == PressurePreconditioner::IncompleteCholesky) {
     pressure_ = s.cholesky.solveWithGuess(rhs_, guess_);
     iterations = s.cholesky.iterations();
     error = s.cholesky.error();
@@ -199,7 +214,7 @@ void PressureProjection::solve(double time) {
   if (!converged || !std::isfinite(error))
     throw RunError(fmt::format(
         "the pore-pressure solve did not converge at t = {:.6g} s: relative residual {:.3g} after "
-        "{} iterations (tolerance {:.3g}, limit {}); try preconditioner: incomplete_cholesky, a "
+        "{} iterations (tolerance {:.3g}, limit {}); try another pore_fluid.preconditioner, a "
         "larger solver_max_iterations, or check the drained boundaries",
         time, error, iterations, tolerance_, max_iterations_));
 }

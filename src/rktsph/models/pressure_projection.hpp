@@ -24,6 +24,8 @@
 #include "rktsph/case/case_description.hpp"
 #include "rktsph/core/checkpoint.hpp"
 #include "rktsph/geometry/node_sets.hpp"
+#include "rktsph/linear_algebra/conjugate_gradient.hpp"
+#include "rktsph/linear_algebra/smoothed_aggregation.hpp"
 #include "rktsph/models/saturated_vpw.hpp"
 #include "rktsph/sph/laplacian.hpp"
 #include "rktsph/time/rk_taylor_step.hpp"
@@ -39,6 +41,8 @@ struct SolverStatistics {
   double solve_seconds = 0.0;       ///< conjugate gradients, all steps
   double projection_seconds = 0.0;  ///< the whole projection (right-hand side, solve, correction)
   double laplacian_scale = 1.0;
+  std::size_t multigrid_levels = 0;   ///< 0 unless the multigrid preconditioner is used
+  double multigrid_complexity = 0.0;  ///< entries of all levels over those of the matrix
 };
 
 class PressureProjection final : public StepProjection {
@@ -72,7 +76,7 @@ class PressureProjection final : public StepProjection {
   const BoundaryConditions& conditions_;
   double alpha_, storage_, permeability_, beta_, tolerance_, checkerboard_theta_;
   long max_iterations_;
-  bool incomplete_cholesky_;
+  PressurePreconditioner preconditioner_;
   double assembled_dt_ = 0.0;
 
   WeightTable gradient_;  // collocated gradient on the SPH nodes, mirror images folded in
@@ -87,6 +91,11 @@ class PressureProjection final : public StepProjection {
 
   struct Solvers;
   std::unique_ptr<Solvers> solvers_;
+  // The multigrid path: K by rows (the products split over the threads), its hierarchy, and the
+  // conjugate gradients' vectors (docs/theory.md §6.7).
+  SparseRows system_rows_;
+  std::unique_ptr<SmoothedAggregation> multigrid_;
+  std::unique_ptr<ConjugateGradient> conjugate_gradient_;
 
   Eigen::VectorXd rhs_, pressure_, previous_, boundary_values_, scratch_;
   // Initial guess of the solve: p_w extrapolated linearly from the last two steps (theory §6.4).

@@ -17,6 +17,19 @@ namespace rktsph {
 
 namespace {
 
+// The case file's word for each preconditioner (case/sections/pore_fluid_section.cpp).
+const char* preconditioner_name(PressurePreconditioner preconditioner) {
+  switch (preconditioner) {
+    case PressurePreconditioner::Jacobi:
+      return "jacobi";
+    case PressurePreconditioner::IncompleteCholesky:
+      return "incomplete_cholesky";
+    case PressurePreconditioner::Multigrid:
+      return "multigrid";
+  }
+  return "unknown";
+}
+
 // A time counts as reached when within a millionth of a step of it (round-off of t += dt).
 bool reached(double time, double target, double dt) {
   return time >= target - 1e-6 * dt;
@@ -461,6 +474,18 @@ void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,
     solver.set("solve_seconds", stats.solve_seconds);
     solver.set("projection_seconds", stats.projection_seconds);
     solver.set("laplacian_scale", stats.laplacian_scale);
+    solver.set("preconditioner",
+               preconditioner_name(simulation.description().pore_fluid->preconditioner));
+    // Shares of the time in steps (the projection is part of each step's integration).
+    const double step_seconds =
+        split.cell_lists + split.operator_tables + split.surface + split.integration;
+    solver.set("solve_share", step_seconds > 0.0 ? stats.solve_seconds / step_seconds : 0.0);
+    solver.set("projection_share",
+               step_seconds > 0.0 ? stats.projection_seconds / step_seconds : 0.0);
+    if (stats.multigrid_levels > 0) {
+      solver.set("multigrid_levels", stats.multigrid_levels);
+      solver.set("multigrid_operator_complexity", stats.multigrid_complexity);
+    }
     summary.set("pressure_solver", std::move(solver));
   }
   if (const ConfigurationMotion* motion = simulation.step().motion())

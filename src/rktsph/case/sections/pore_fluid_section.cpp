@@ -41,9 +41,12 @@ const KeyTable<PoreFluidSpec>& pore_fluid_keys() {
                out << YAML::Key << "projection_beta" << YAML::Value
                    << static_cast<int>(fluid.projection_beta);
              }},
-      choice_key<P, bool>("preconditioner", &P::incomplete_cholesky,
-                          {{"jacobi", false}, {"incomplete_cholesky", true}},
-                          "Preconditioner of the conjugate-gradient pressure solve."),
+      choice_key<P, PressurePreconditioner>(
+          "preconditioner", &P::preconditioner,
+          {{"multigrid", PressurePreconditioner::Multigrid},
+           {"jacobi", PressurePreconditioner::Jacobi},
+           {"incomplete_cholesky", PressurePreconditioner::IncompleteCholesky}},
+          "Preconditioner of the conjugate-gradient pressure solve."),
       number_key<P>("solver_tolerance", &P::solver_tolerance, tolerance_range(), "–",
                     "Relative residual at which the solve stops."),
       // The default depends on the number of SPH nodes, known only once the lattice is built
