@@ -44,13 +44,17 @@ ConjugateGradientResult ConjugateGradient::solve(const SparseRows& a,
   while (result.iterations < max_iterations) {
     multiply(a, p, q);
     const double alpha = rz / dot(p, q, n);
-#pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
-    for (std::int64_t i = 0; i < rows; ++i) {
-      x[i] += alpha * p[i];
-      r[i] -= alpha * q[i];
-    }
+    // x += alpha p, r -= alpha q and |r|^2 in one pass.
+    residual_norm2 = chunked_sum(n, [=](std::int64_t begin, std::int64_t end) {
+      double sum = 0.0;
+      for (std::int64_t i = begin; i < end; ++i) {
+        x[i] += alpha * p[i];
+        r[i] -= alpha * q[i];
+        sum += r[i] * r[i];
+      }
+      return sum;
+    });
     ++result.iterations;
-    residual_norm2 = dot(r, r, n);
     if (!std::isfinite(residual_norm2) || residual_norm2 < threshold) break;
     preconditioner.apply(r, z);
     const double rz_next = dot(r, z, n);

@@ -80,11 +80,11 @@ struct SweepRows {
 };
 
 // body(begin, end) over the Gauss-Seidel chunks of `rows` rows, split over the threads. The chunks
-// are fixed by the number of rows alone (max(4096, rows / 256) each).
+// are fixed by the number of rows alone (max(1024, rows / 256) each).
 template <typename Body>
 void for_each_chunk(std::size_t rows, Body body) {
   const auto n = static_cast<std::int64_t>(rows);
-  const std::int64_t chunk = std::max<std::int64_t>(4096, (n + 255) / 256);
+  const std::int64_t chunk = std::max<std::int64_t>(1024, (n + 255) / 256);
   const std::int64_t chunks = (n + chunk - 1) / chunk;
 #pragma omp parallel for schedule(static) if (chunks > 1)
   for (std::int64_t c = 0; c < chunks; ++c)
@@ -201,8 +201,12 @@ SmoothedAggregation::SmoothedAggregation(const SparseRows& a, const MultigridOpt
     const auto n = static_cast<std::size_t>(matrix.rows());
     level.inverse_diagonal = inverted_diagonal(matrix);
     level.diagonal_entry = diagonal_entries(matrix);
-    for (auto* vector : {&level.rhs, &level.solution, &level.residual, &level.snapshot})
-      vector->assign(n, 0.0);
+    level.residual.assign(n, 0.0);
+    level.snapshot.assign(n, 0.0);
+    if (levels_.size() > 1) {  // the finest level's right-hand side and solution are the caller's
+      level.rhs.assign(n, 0.0);
+      level.solution.assign(n, 0.0);
+    }
     if (n <= options_.coarsest_rows || static_cast<int>(levels_.size()) >= options_.max_levels)
       break;
     int count = 0;
@@ -254,10 +258,7 @@ double SmoothedAggregation::operator_complexity() const {
 }
 
 void SmoothedAggregation::apply(const double* r, double* z) const {
-  const Level& finest = levels_.front();
-  parallel_copy(r, finest.rhs.size(), finest.rhs.data());
-  cycle(0);
-  parallel_copy(finest.solution.data(), finest.solution.size(), z);
+  cycle(0, r, z);
 }
 
 // Gauss-Seidel in chunks of rows fixed by the size of the level alone (not by the number of
@@ -266,13 +267,12 @@ void SmoothedAggregation::apply(const double* r, double* z) const {
 // zero guess, a snapshot in the backward one). The backward sweep is the adjoint of the forward
 // one, which keeps the cycle symmetric. Rows are sorted, so the entries before a row's diagonal are
 // its lower part.
-void SmoothedAggregation::forward_gauss_seidel(const Level& level) const {
+void SmoothedAggregation::forward_gauss_seidel(const Level& level, const double* b,
+                                               double* x) const {
   const SweepRows a(*level.matrix, level.diagonal_entry);
-  const double* b = level.rhs.data();
   const double* inverse = level.inverse_diagonal.data();
-  double* x = level.solution.data();
   double* r = level.residual.data();
-  for_each_chunk(level.rhs.size(), [&](std::int64_t begin, std::int64_t end) {
+  for_each_chunk(level.residual.size(), [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = begin; i < end; ++i) {
       double sum = b[i];
       for (int k = a.start[i]; k < a.middle[i]; ++k)
@@ -282,7 +282,7 @@ void SmoothedAggregation::forward_gauss_seidel(const Level& level) const {
   });
   // The sweep zeroed each row's residual against the entries it used, so b - A x is minus the
   // entries it did not use: the upper part, and the lower part in earlier chunks.
-  for_each_chunk(level.rhs.size(), [&](std::int64_t begin, std::int64_t end) {
+  for_each_chunk(level.residual.size(), [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = begin; i < end; ++i) {
       double sum = 0.0;
       for (int k = a.start[i]; k < a.middle[i] && a.column[k] < begin; ++k)
@@ -294,14 +294,13 @@ void SmoothedAggregation::forward_gauss_seidel(const Level& level) const {
   });
 }
 
-void SmoothedAggregation::backward_gauss_seidel(const Level& level) const {
+void SmoothedAggregation::backward_gauss_seidel(const Level& level, const double* b,
+                                                double* x) const {
   const SweepRows a(*level.matrix, level.diagonal_entry);
-  const double* b = level.rhs.data();
   const double* inverse = level.inverse_diagonal.data();
-  double* x = level.solution.data();
   double* before = level.snapshot.data();
-  parallel_copy(x, level.solution.size(), before);
-  for_each_chunk(level.rhs.size(), [&](std::int64_t begin, std::int64_t end) {
+  parallel_copy(x, level.snapshot.size(), before);
+  for_each_chunk(level.snapshot.size(), [&](std::int64_t begin, std::int64_t end) {
     for (std::int64_t i = end - 1; i >= begin; --i) {
       // Lower part and diagonal: not updated yet in this sweep, or in another chunk: the snapshot.
       double sum = b[i];
@@ -317,20 +316,19 @@ void SmoothedAggregation::backward_gauss_seidel(const Level& level) const {
   });
 }
 
-void SmoothedAggregation::cycle(std::size_t l) const {
+void SmoothedAggregation::cycle(std::size_t l, const double* b, double* x) const {
   const Level& level = levels_[l];
   if (l + 1 == levels_.size()) {
-    const auto n = static_cast<Eigen::Index>(level.rhs.size());
-    Eigen::Map<Eigen::VectorXd>(level.solution.data(), n) =
-        coarsest_.solve(Eigen::Map<const Eigen::VectorXd>(level.rhs.data(), n));
+    const auto n = static_cast<Eigen::Index>(level.residual.size());
+    Eigen::Map<Eigen::VectorXd>(x, n) = coarsest_.solve(Eigen::Map<const Eigen::VectorXd>(b, n));
     return;
   }
   const Level& coarse = levels_[l + 1];
-  forward_gauss_seidel(level);
+  forward_gauss_seidel(level, b, x);
   multiply(level.restriction, level.residual.data(), coarse.rhs.data());
-  cycle(l + 1);
-  add_product(level.prolongator, coarse.solution.data(), level.solution.data());
-  backward_gauss_seidel(level);
+  cycle(l + 1, coarse.rhs.data(), coarse.solution.data());
+  add_product(level.prolongator, coarse.solution.data(), x);
+  backward_gauss_seidel(level, b, x);
 }
 
 }  // namespace rktsph

@@ -45,15 +45,16 @@ class SmoothedAggregation final : public Preconditioner {
     SparseRows restriction;              // P^T, stored so that both are products over rows
     std::vector<double> inverse_diagonal;
     std::vector<int> diagonal_entry;  // index of each row's diagonal among the entries
-    // Workspace of the cycle.
+    // Workspace of the cycle (rhs and solution stay empty on the finest level: apply's r and z).
     mutable std::vector<double> rhs, solution, residual, snapshot;
   };
 
-  void cycle(std::size_t level) const;
+  /// x = the V-cycle from `level` down applied to b.
+  void cycle(std::size_t level, const double* b, double* x) const;
   /// The forward sweep from a zero guess, leaving b - A x in level.residual.
-  void forward_gauss_seidel(const Level& level) const;
-  /// The backward sweep from the current solution (the adjoint of the forward one).
-  void backward_gauss_seidel(const Level& level) const;
+  void forward_gauss_seidel(const Level& level, const double* b, double* x) const;
+  /// The backward sweep from the current x (the adjoint of the forward one).
+  void backward_gauss_seidel(const Level& level, const double* b, double* x) const;
 
   MultigridOptions options_;
   std::vector<Level> levels_;

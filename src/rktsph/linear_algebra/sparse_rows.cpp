@@ -1,6 +1,5 @@
 #include "rktsph/linear_algebra/sparse_rows.hpp"
 
-#include <array>
 #include <cstdint>
 
 #include "rktsph/core/parallel.hpp"
@@ -8,8 +7,6 @@
 namespace rktsph {
 
 namespace {
-// Chunks of the reproducible sums: more than any thread count we run on, few enough to add cheaply.
-constexpr std::int64_t kSumChunks = 64;
 
 double row_product(const SparseRows& a, std::int64_t row, const double* x) {
   const int* column = a.innerIndexPtr();
@@ -36,22 +33,12 @@ void residual(const SparseRows& a, const double* x, const double* b, double* r) 
 }
 
 double dot(const double* x, const double* y, std::size_t n) {
-  const auto length = static_cast<std::int64_t>(n);
-  // A fixed number of contiguous chunks whose bounds depend on n only, summed in chunk order: the
-  // result does not depend on the number of threads, and nothing is allocated.
-  std::array<double, kSumChunks> partial{};
-#pragma omp parallel for schedule(static) if (length > kParallelThreshold)
-  for (std::int64_t c = 0; c < kSumChunks; ++c) {
-    const std::int64_t begin = length * c / kSumChunks, end = length * (c + 1) / kSumChunks;
+  return chunked_sum(n, [x, y](std::int64_t begin, std::int64_t end) {
     double sum = 0.0;
     for (std::int64_t i = begin; i < end; ++i)
       sum += x[i] * y[i];
-    partial[static_cast<std::size_t>(c)] = sum;
-  }
-  double sum = 0.0;
-  for (double value : partial)
-    sum += value;
-  return sum;
+    return sum;
+  });
 }
 
 std::vector<double> diagonal(const SparseRows& a) {

@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "rktsph/core/parallel.hpp"
+
 namespace rktsph {
 
 struct PressureProjection::Solvers {
@@ -129,8 +131,10 @@ void PressureProjection::assemble(double dt) {
   system_.setFromTriplets(system.begin(), system.end());
   projection_term_.resize(n, n);
   projection_term_.setFromTriplets(projection.begin(), projection.end());
+  projection_term_.makeCompressed();
   drained_coupling_.resize(n, n);
   drained_coupling_.setFromTriplets(coupling.begin(), coupling.end());
+  drained_coupling_.makeCompressed();
   assembled_dt_ = dt;
 
   Solvers& s = *solvers_;
@@ -189,7 +193,7 @@ void PressureProjection::solve(double time) {
   double error;
   bool converged;
   if (preconditioner_ == PressurePreconditioner::Multigrid) {
-    pressure_ = guess_;
+    parallel_copy(guess_.data(), static_cast<std::size_t>(guess_.size()), pressure_.data());
     const ConjugateGradientResult result = conjugate_gradient_->solve(
         system_rows_, *multigrid_, rhs_.data(), pressure_.data(), tolerance_, max_iterations_);
     iterations = result.iterations;
@@ -221,60 +225,69 @@ void PressureProjection::solve(double time) {
 
 void PressureProjection::project(State& state, double time, double dt) {
   const auto start = std::chrono::steady_clock::now();
-  if (dt != assembled_dt_) assemble(dt);
+  // The last step of a run is end - t, which differs from dt in its last bits even when end is a
+  // multiple of dt: reassembling (and, with multigrid, rebuilding the hierarchy) for a relative
+  // change below 1e-9 would cost seconds at 10^6 nodes for a change in p_w far below the solver
+  // tolerance.
+  if (std::abs(dt - assembled_dt_) > 1e-9 * assembled_dt_) assemble(dt);
   const std::size_t n = nodes_.sph_nodes.size();
   const int d = nodes_.dimension;
   const int pw = model_.pore_pressure_field();
 
   // div v* with the collocated gradient (velocity components are odd under their mirror).
   for (int a = 0; a < d; ++a)
-    std::copy_n(state.fields.field(model_.velocity_field(a)), n, velocity_.field(a));
+    parallel_copy(state.fields.field(model_.velocity_field(a)), n, velocity_.field(a));
   apply_operator(gradient_, velocity_, velocity_parity_, nullptr, &velocity_gradient_);
-  for (std::size_t i = 0; i < n; ++i)
-    previous_[static_cast<Eigen::Index>(i)] = state.fields(pw, i);
+  const double* pressure_now = state.fields.field(pw);
+  parallel_copy(pressure_now, n, previous_.data());
 
   // Right-hand side of eq. 6.3, then the drained values moved to it.
-  scratch_.noalias() = projection_term_ * previous_;
-  for (std::size_t i = 0; i < n; ++i) {
+  multiply(projection_term_, previous_.data(), scratch_.data());
+  const auto nodes = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static) if (nodes > kParallelThreshold)
+  for (std::int64_t i = 0; i < nodes; ++i) {
+    const auto k = static_cast<std::size_t>(i);
     double divergence = 0.0;
     for (int a = 0; a < d; ++a)
-      divergence += velocity_gradient_(a * d + a, i);
-    const double volume = laplacian_.effective_volume[i];
-    rhs_[static_cast<Eigen::Index>(i)] =
-        volume * (storage_ / dt * previous_[static_cast<Eigen::Index>(i)] - alpha_ * divergence) -
-        beta_ * scratch_[static_cast<Eigen::Index>(i)];
+      divergence += velocity_gradient_(a * d + a, k);
+    rhs_[i] =
+        laplacian_.effective_volume[k] * (storage_ / dt * previous_[i] - alpha_ * divergence) -
+        beta_ * scratch_[i];
   }
   const auto& drained = conditions_.drained_nodes();
   for (std::size_t k = 0; k < drained.size(); ++k)
     boundary_values_[drained[k]] = conditions_.drained_pressure(k, time);
   if (!drained.empty()) {
-    scratch_.noalias() = drained_coupling_ * boundary_values_;
-    rhs_ -= scratch_;
+    multiply(drained_coupling_, boundary_values_.data(), scratch_.data());
+#pragma omp parallel for schedule(static) if (nodes > kParallelThreshold)
+    for (std::int64_t i = 0; i < nodes; ++i)
+      rhs_[i] -= scratch_[i];
     for (std::int32_t node : drained)
       rhs_[node] =
           laplacian_.effective_volume[static_cast<std::size_t>(node)] / dt * boundary_values_[node];
   }
   // Initial guess: p_w^n + (p_w^n - p_w^{n-1}). With a relative tolerance, a guess that is O(dt^2)
   // rather than O(dt) off saves the iterations that only recover the trend (theory §6.4).
-  if (has_older_)
-    guess_ = 2.0 * previous_ - older_;
-  else
-    guess_ = previous_;
+#pragma omp parallel for schedule(static) if (nodes > kParallelThreshold)
+  for (std::int64_t i = 0; i < nodes; ++i)
+    guess_[i] = has_older_ ? 2.0 * previous_[i] - older_[i] : previous_[i];
   solve(time);
-  older_ = previous_;
+  parallel_copy(previous_.data(), n, older_.data());
   has_older_ = true;
 
   // Velocity correction, eq. 6.4.
-  for (std::size_t i = 0; i < n; ++i)
-    pressure_increment_(0, i) =
-        pressure_[static_cast<Eigen::Index>(i)] - beta_ * previous_[static_cast<Eigen::Index>(i)];
+#pragma omp parallel for schedule(static) if (nodes > kParallelThreshold)
+  for (std::int64_t i = 0; i < nodes; ++i)
+    pressure_increment_(0, static_cast<std::size_t>(i)) = pressure_[i] - beta_ * previous_[i];
   const Parity even[] = {kEven};
   apply_operator(gradient_, pressure_increment_, even, nullptr, &pressure_gradient_);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double factor = alpha_ * dt / density_[i];
+#pragma omp parallel for schedule(static) if (nodes > kParallelThreshold)
+  for (std::int64_t i = 0; i < nodes; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const double factor = alpha_ * dt / density_[k];
     for (int a = 0; a < d; ++a)
-      state.fields(model_.velocity_field(a), i) -= factor * pressure_gradient_(a, i);
-    state.fields(pw, i) = pressure_[static_cast<Eigen::Index>(i)];
+      state.fields(model_.velocity_field(a), k) -= factor * pressure_gradient_(a, k);
+    state.fields(pw, k) = pressure_[i];
   }
   conditions_.apply(time, state.fields);
   statistics_.projection_seconds += seconds_since(start);
