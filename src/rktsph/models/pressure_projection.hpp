@@ -81,11 +81,11 @@ class PressureProjection final : public StepProjection {
 
   WeightTable gradient_;  // collocated gradient on the SPH nodes, mirror images folded in
   LaplacianMatrix laplacian_;
-  Eigen::SparseMatrix<double> system_;            // K, drained rows and columns decoupled
-  SparseRows projection_term_;   // (alpha^2 dt / rho) Ltilde, for the RHS
-  SparseRows drained_coupling_;  // K(free rows, drained columns)
-  Eigen::SparseMatrix<double> stabilisation_;     // S, theory §6.6
-  double checkerboard_rate_ = 0.0;                // -lambda of L on the checkerboard
+  Eigen::SparseMatrix<double> system_;         // K, drained rows and columns decoupled
+  SparseRows projection_term_;                 // (alpha^2 dt / rho) Ltilde, for the RHS
+  SparseRows drained_coupling_;                // K(free rows, drained columns)
+  Eigen::SparseMatrix<double> stabilisation_;  // S, theory §6.6
+  double checkerboard_rate_ = 0.0;             // -lambda of L on the checkerboard
   std::vector<char> drained_;
   std::vector<double> density_;
 
