@@ -127,8 +127,17 @@ void PressureProjection::assemble(double dt) {
         i, i, drained_[k] ? laplacian_.effective_volume[k] / dt : storage + system_diagonal[k]);
     projection.emplace_back(i, i, projection_diagonal[k]);
   }
-  system_.resize(n, n);
-  system_.setFromTriplets(system.begin(), system.end());
+  // K is kept once: by rows for the multigrid path, by columns for Eigen's solvers.
+  if (preconditioner_ == PressurePreconditioner::Multigrid) {
+    system_rows_.resize(n, n);
+    system_rows_.setFromTriplets(system.begin(), system.end());
+    system_rows_.makeCompressed();
+  } else {
+    system_.resize(n, n);
+    system_.setFromTriplets(system.begin(), system.end());
+  }
+  system.clear();
+  system.shrink_to_fit();
   projection_term_.resize(n, n);
   projection_term_.setFromTriplets(projection.begin(), projection.end());
   projection_term_.makeCompressed();
@@ -139,8 +148,6 @@ void PressureProjection::assemble(double dt) {
 
   Solvers& s = *solvers_;
   if (preconditioner_ == PressurePreconditioner::Multigrid) {
-    system_rows_ = SparseRows(system_);
-    system_rows_.makeCompressed();
     multigrid_ = std::make_unique<SmoothedAggregation>(system_rows_);
     conjugate_gradient_ =
         std::make_unique<ConjugateGradient>(static_cast<std::size_t>(system_rows_.rows()));

@@ -59,8 +59,12 @@ class PressureProjection final : public StepProjection {
   void save_checkpoint(CheckpointOut& out) const override;
   void restore_checkpoint(CheckpointIn& in) override;
   const LaplacianMatrix& laplacian() const { return laplacian_; }
-  /// The assembled system matrix (Dirichlet rows decoupled), for tests.
-  const Eigen::SparseMatrix<double>& system() const { return system_; }
+  /// A copy of the assembled system matrix (Dirichlet rows decoupled), for tests.
+  Eigen::SparseMatrix<double> system() const {
+    return preconditioner_ == PressurePreconditioner::Multigrid
+               ? Eigen::SparseMatrix<double>(system_rows_)
+               : system_;
+  }
   /// The checkerboard stabilisation S (all rows and columns, before the drained rows are
   /// decoupled); empty unless 2D with theta > 0.
   const Eigen::SparseMatrix<double>& stabilisation() const { return stabilisation_; }
@@ -81,9 +85,9 @@ class PressureProjection final : public StepProjection {
 
   WeightTable gradient_;  // collocated gradient on the SPH nodes, mirror images folded in
   LaplacianMatrix laplacian_;
-  Eigen::SparseMatrix<double> system_;         // K, drained rows and columns decoupled
-  SparseRows projection_term_;                 // (alpha^2 dt / rho) Ltilde, for the RHS
-  SparseRows drained_coupling_;                // K(free rows, drained columns)
+  Eigen::SparseMatrix<double> system_;  // K, drained rows and columns decoupled (Eigen's solvers)
+  SparseRows projection_term_;          // (alpha^2 dt / rho) Ltilde, for the RHS
+  SparseRows drained_coupling_;         // K(free rows, drained columns)
   Eigen::SparseMatrix<double> stabilisation_;  // S, theory §6.6
   double checkerboard_rate_ = 0.0;             // -lambda of L on the checkerboard
   std::vector<char> drained_;
@@ -91,7 +95,8 @@ class PressureProjection final : public StepProjection {
 
   struct Solvers;
   std::unique_ptr<Solvers> solvers_;
-  // The multigrid path: K by rows (the products split over the threads), its hierarchy, and the
+  // The multigrid path: K by rows (the products split over the threads; system_ stays empty), its
+  // hierarchy, and the
   // conjugate gradients' vectors (docs/theory.md §6.7).
   SparseRows system_rows_;
   std::unique_ptr<SmoothedAggregation> multigrid_;
