@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rktsph/core/error.hpp"
@@ -135,6 +136,16 @@ struct InitialConditionsSpec {
 
 /// Preconditioner of the conjugate-gradient pore-pressure solve (docs/theory.md §6.7).
 enum class PressurePreconditioner { Jacobi, IncompleteCholesky, Multigrid };
+
+/// The case file's word for each preconditioner (`pore_fluid.preconditioner`), in documented order;
+/// summary.json reports the same words.
+inline const std::vector<std::pair<std::string, PressurePreconditioner>>& preconditioner_words() {
+  static const std::vector<std::pair<std::string, PressurePreconditioner>> words = {
+      {"multigrid", PressurePreconditioner::Multigrid},
+      {"jacobi", PressurePreconditioner::Jacobi},
+      {"incomplete_cholesky", PressurePreconditioner::IncompleteCholesky}};
+  return words;
+}
 
 /// Pore water and the pressure solve of the saturated v-pw model (docs/theory.md §6).
 struct PoreFluidSpec {

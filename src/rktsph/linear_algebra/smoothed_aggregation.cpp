@@ -15,21 +15,6 @@ bool strong(double value, double diagonal_i, double diagonal_j, double threshold
   return std::abs(value) >= threshold * std::sqrt(std::abs(diagonal_i * diagonal_j));
 }
 
-// y += A x over rows.
-void add_product(const SparseRows& a, const double* x, double* y) {
-  const std::int64_t rows = a.rows();
-  const int* start = a.outerIndexPtr();
-  const int* column = a.innerIndexPtr();
-  const double* value = a.valuePtr();
-#pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
-  for (std::int64_t i = 0; i < rows; ++i) {
-    double sum = 0.0;
-    for (int k = start[i]; k < start[i + 1]; ++k)
-      sum += value[k] * x[column[k]];
-    y[i] += sum;
-  }
-}
-
 SparseRows tentative_prolongator(const std::vector<int>& aggregate, int count) {
   std::vector<Eigen::Triplet<double, int>> entries;
   entries.reserve(aggregate.size());
@@ -191,6 +176,8 @@ SmoothedAggregation::SmoothedAggregation(const SparseRows& a, const MultigridOpt
     : options_(options) {
   if (a.rows() != a.cols() || !a.isCompressed())
     throw std::invalid_argument("SmoothedAggregation: the matrix must be square and compressed");
+  // Never more than max_levels levels: reserved, the vector does not move, so each level's pointer
+  // to its own coarse matrix stays valid.
   levels_.reserve(static_cast<std::size_t>(std::max(options_.max_levels, 1)));
   levels_.emplace_back();
   levels_.back().matrix = &a;
@@ -236,9 +223,6 @@ SmoothedAggregation::SmoothedAggregation(const SparseRows& a, const MultigridOpt
     levels_.back().matrix = &levels_.back().coarse_matrix;
     threshold *= 0.5;
   }
-  // The vector of levels no longer grows: re-point each level at its own coarse matrix.
-  for (std::size_t l = 1; l < levels_.size(); ++l)
-    levels_[l].matrix = &levels_[l].coarse_matrix;
   coarsest_.compute(Eigen::SparseMatrix<double>(*levels_.back().matrix));
   if (coarsest_.info() != Eigen::Success)
     throw std::invalid_argument(

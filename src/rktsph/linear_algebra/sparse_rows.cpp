@@ -25,6 +25,13 @@ void multiply(const SparseRows& a, const double* x, double* y) {
     y[i] = row_product(a, i, x);
 }
 
+void add_product(const SparseRows& a, const double* x, double* y) {
+  const std::int64_t rows = a.rows();
+#pragma omp parallel for schedule(static) if (rows > kParallelThreshold)
+  for (std::int64_t i = 0; i < rows; ++i)
+    y[i] += row_product(a, i, x);
+}
+
 void residual(const SparseRows& a, const double* x, const double* b, double* r) {
   const std::int64_t rows = a.rows();
 #pragma omp parallel for schedule(static) if (rows > kParallelThreshold)

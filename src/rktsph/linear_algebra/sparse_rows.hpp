@@ -19,7 +19,10 @@ using SparseRows = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 /// y = A x. A must be compressed; x and y must not overlap.
 void multiply(const SparseRows& a, const double* x, double* y);
 
-/// r = b - A x.
+/// y += A x.
+void add_product(const SparseRows& a, const double* x, double* y);
+
+/// r = b - A x; r may be b (each row reads its own b before writing it), not x.
 void residual(const SparseRows& a, const double* x, const double* b, double* r);
 
 /// sum over c of chunk_sum(begin_c, end_c) over 64 contiguous chunks of [0, n) whose bounds depend

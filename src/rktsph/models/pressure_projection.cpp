@@ -265,10 +265,7 @@ void PressureProjection::project(State& state, double time, double dt) {
   for (std::size_t k = 0; k < drained.size(); ++k)
     boundary_values_[drained[k]] = conditions_.drained_pressure(k, time);
   if (!drained.empty()) {
-    multiply(drained_coupling_, boundary_values_.data(), scratch_.data());
-#pragma omp parallel for schedule(static) if (nodes > kParallelThreshold)
-    for (std::int64_t i = 0; i < nodes; ++i)
-      rhs_[i] -= scratch_[i];
+    residual(drained_coupling_, boundary_values_.data(), rhs_.data(), rhs_.data());
     for (std::int32_t node : drained)
       rhs_[node] =
           laplacian_.effective_volume[static_cast<std::size_t>(node)] / dt * boundary_values_[node];

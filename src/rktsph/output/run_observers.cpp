@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "rktsph/case/key_spec.hpp"
 #include "rktsph/case/yaml_reader.hpp"
 #include "rktsph/core/build_info.hpp"
 #include "rktsph/output/atomic_file.hpp"
@@ -16,19 +17,6 @@
 namespace rktsph {
 
 namespace {
-
-// The case file's word for each preconditioner (case/sections/pore_fluid_section.cpp).
-const char* preconditioner_name(PressurePreconditioner preconditioner) {
-  switch (preconditioner) {
-    case PressurePreconditioner::Jacobi:
-      return "jacobi";
-    case PressurePreconditioner::IncompleteCholesky:
-      return "incomplete_cholesky";
-    case PressurePreconditioner::Multigrid:
-      return "multigrid";
-  }
-  return "unknown";
-}
 
 // A time counts as reached when within a millionth of a step of it (round-off of t += dt).
 bool reached(double time, double target, double dt) {
@@ -474,8 +462,8 @@ void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,
     solver.set("solve_seconds", stats.solve_seconds);
     solver.set("projection_seconds", stats.projection_seconds);
     solver.set("laplacian_scale", stats.laplacian_scale);
-    solver.set("preconditioner",
-               preconditioner_name(simulation.description().pore_fluid->preconditioner));
+    solver.set("preconditioner", choice_word(preconditioner_words(),
+                                             simulation.description().pore_fluid->preconditioner));
     // Shares of the time in steps (the projection is part of each step's integration).
     const double step_seconds =
         split.cell_lists + split.operator_tables + split.surface + split.integration;

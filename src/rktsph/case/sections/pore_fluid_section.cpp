@@ -42,10 +42,7 @@ const KeyTable<PoreFluidSpec>& pore_fluid_keys() {
                    << static_cast<int>(fluid.projection_beta);
              }},
       choice_key<P, PressurePreconditioner>(
-          "preconditioner", &P::preconditioner,
-          {{"multigrid", PressurePreconditioner::Multigrid},
-           {"jacobi", PressurePreconditioner::Jacobi},
-           {"incomplete_cholesky", PressurePreconditioner::IncompleteCholesky}},
+          "preconditioner", &P::preconditioner, preconditioner_words(),
           "Preconditioner of the conjugate-gradient pressure solve."),
       number_key<P>("solver_tolerance", &P::solver_tolerance, tolerance_range(), "–",
                     "Relative residual at which the solve stops."),
