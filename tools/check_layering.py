@@ -15,6 +15,7 @@ import tempfile
 LAYERS = [
     "core",           # errors, field arrays, checkpoint streams, time functions
     "linear_algebra", # sparse rows, conjugate gradients, smoothed-aggregation multigrid
+    "mesh",           # the cell complex, cell kinds, the outline
     "sph",            # kernels, neighbour search, corrective operator tables, Laplacian
     "case",           # case file -> CaseDescription
     "geometry",       # shapes -> reference configuration, groups

@@ -87,6 +87,41 @@ TEST(BoundaryConditions, TractionIsImposedAsSigmaDotN) {
   EXPECT_DOUBLE_EQ(fields(sxy, static_cast<std::size_t>(node_at(simulation, 3, 0))), 0.0);
 }
 
+TEST(BoundaryConditions, TractionActsOnTheFacetsWithinItsGroup) {
+  // The footing group spans 0 <= x <= 2 at dx = 1: the facets [0, 1] and [1, 2] are loaded, so the
+  // corner node x = 0 (its top face is that one facet) and x = 1 carry t, the edge node x = 2 half
+  // of it (one of its two facets), and the nodal tractions integrate to t times the width.
+  Simulation simulation(read_case_text(kBlock, "block.yaml"));
+  FieldArray fields(simulation.model().field_count(), simulation.nodes().sph_nodes.size());
+  std::fill(fields.data().begin(), fields.data().end(), 0.0);
+  simulation.boundary_conditions().apply(0.0, fields);
+  const int syy = simulation.model().stress_field(1, 1);
+  auto top = [&](double x) {
+    return fields(syy, static_cast<std::size_t>(node_at(simulation, x, 4)));
+  };
+  EXPECT_DOUBLE_EQ(top(0), -1000.0);
+  EXPECT_DOUBLE_EQ(top(1), -1000.0);
+  EXPECT_DOUBLE_EQ(top(2), -500.0);
+  EXPECT_DOUBLE_EQ(top(3), 0.0);
+  // Trapezoidal rule over the top face: 1 * (t0/2 + t1 + t2 + t3 + ... ) = t * 2.
+  double load = 0.5 * top(0) + 0.5 * top(6);
+  for (int x = 1; x < 6; ++x)
+    load += top(x);
+  EXPECT_DOUBLE_EQ(load, -1000.0 * 2.0);
+}
+
+TEST(BoundaryConditions, TractionOnOneNodeIsAnError) {
+  // A single node holds no facet: the load would have no width.
+  std::string text = kBlock;
+  text.replace(text.find("box: {min: [0, 4], max: [2, 4]}"), 31, "point: [3, 4]");
+  try {
+    Simulation simulation(read_case_text(text, "block.yaml"));
+    FAIL() << "a traction on one node was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("no whole facet"), std::string::npos) << error.what();
+  }
+}
+
 TEST(BoundaryConditions, TractionOnAGroupWithNoCommonFaceIsAnError) {
   std::string text = kBlock;
   text.replace(text.find("box: {min: [0, 4], max: [2, 4]}"), 31, "box: {min: [0, 3], max: [2, 4]}");

@@ -15,9 +15,9 @@ TEST(PerimeterNormals, FollowAnAffineMapOfTheBodyExactly) {
   const NodeSets nodes = test::rectangle_lattice(3.0, 2.0, 0.5);
   const std::vector<std::uint8_t> no_mirrors(nodes.sph_nodes.size(), 0);
   SurfaceSet surface;
-  lattice_surface(nodes, no_mirrors, surface);
+  outline_surface(nodes.cells, nodes.outline, nodes.sph_nodes, no_mirrors, surface);
   const SurfaceSet reference = surface;
-  const PerimeterNormals perimeter(nodes, surface);
+  const PerimeterNormals perimeter(nodes.outline, nodes.sph_nodes, surface);
   // F = R(40 deg) [[1.3, 0.4], [0, 0.8]]: rotation, stretch and shear.
   const double angle = 40.0 * std::acos(-1.0) / 180.0;
   const double c = std::cos(angle), s = std::sin(angle);
@@ -47,8 +47,8 @@ TEST(PerimeterNormals, ABentFaceTakesTheChordOfItsNeighbours) {
   const NodeSets nodes = test::rectangle_lattice(2.0, 1.0, 0.5);
   const std::vector<std::uint8_t> no_mirrors(nodes.sph_nodes.size(), 0);
   SurfaceSet surface;
-  lattice_surface(nodes, no_mirrors, surface);
-  const PerimeterNormals perimeter(nodes, surface);
+  outline_surface(nodes.cells, nodes.outline, nodes.sph_nodes, no_mirrors, surface);
+  const PerimeterNormals perimeter(nodes.outline, nodes.sph_nodes, surface);
   // Lift the middle node of the top face by dx/2: its neighbours along the face stay, so its
   // normal stays +y, while each neighbour's turns towards the bump by atan(0.25 / 1).
   PointCloud moved = nodes.sph_nodes;

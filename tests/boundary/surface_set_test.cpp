@@ -1,5 +1,6 @@
-// The surface set: a lattice's faces from missing neighbours, rebuilt into the same buffers, and
-// the boundary conditions acting on a surface whose normals are not lattice axes.
+// The surface set: a body's faces from the outline of its cells (on a lattice, the directions with
+// no neighbour node), rebuilt into the same buffers, and the boundary conditions acting on a
+// surface whose normals are not lattice axes.
 #include "rktsph/boundary/surface_set.hpp"
 
 #include <gtest/gtest.h>
@@ -19,7 +20,7 @@ TEST(SurfaceSet, LatticeFacesAreTheMissingNeighbours) {
   const NodeSets nodes = test::rectangle_lattice(2.0, 1.0, 1.0);  // 3 x 2 nodes, all on the surface
   std::vector<std::uint8_t> mirror_axes(nodes.sph_nodes.size(), 0);
   SurfaceSet surface;
-  lattice_surface(nodes, mirror_axes, surface);
+  outline_surface(nodes.cells, nodes.outline, nodes.sph_nodes, mirror_axes, surface);
   ASSERT_EQ(surface.size(), 6u);
   EXPECT_EQ(surface.facet_count(), 2u * 4u + 2u * 2u - 2u);  // 4 corners x 2, 2 edge middles x 1
   const std::int32_t corner = nodes.node_at({0, 0, 0});
@@ -32,18 +33,98 @@ TEST(SurfaceSet, LatticeFacesAreTheMissingNeighbours) {
   // A mirror plane y = 0 closes the bottom faces.
   for (std::int32_t i = 0; i < 3; ++i)
     mirror_axes[static_cast<std::size_t>(nodes.node_at({i, 0, 0}))] = 0b10;
-  lattice_surface(nodes, mirror_axes, surface);
+  outline_surface(nodes.cells, nodes.outline, nodes.sph_nodes, mirror_axes, surface);
   EXPECT_EQ(surface.facet_count(), 10u - 3u);
+}
+
+// The faces of a lattice body by the rule the lattice suggests: the directions +-e_a with no
+// neighbour node and no mirror plane, in the order -x, +x, -y, +y, as node -> normals. Written
+// here from positions, independently of the outline.
+std::vector<std::pair<std::int32_t, std::vector<Vector3>>> missing_neighbours(
+    const NodeSets& nodes, const std::vector<std::uint8_t>& mirror_axes) {
+  const PointCloud& x = nodes.sph_nodes;
+  const double dx = nodes.spacing;
+  auto node_near = [&](double px, double py) {
+    for (std::size_t j = 0; j < x.size(); ++j)
+      if (std::abs(x.position[0][j] - px) < 1e-9 && std::abs(x.position[1][j] - py) < 1e-9)
+        return true;
+    return false;
+  };
+  std::vector<std::pair<std::int32_t, std::vector<Vector3>>> faces;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    std::vector<Vector3> normals;
+    for (int a = 0; a < 2; ++a) {
+      if ((mirror_axes[i] >> a) & 1u) continue;
+      for (const double sign : {-1.0, 1.0}) {
+        const double px = x.position[0][i] + (a == 0 ? sign * dx : 0.0);
+        const double py = x.position[1][i] + (a == 1 ? sign * dx : 0.0);
+        if (node_near(px, py)) continue;
+        Vector3 n{};
+        n[static_cast<std::size_t>(a)] = sign;
+        normals.push_back(n);
+      }
+    }
+    if (!normals.empty()) faces.emplace_back(static_cast<std::int32_t>(i), normals);
+  }
+  return faces;
+}
+
+TEST(SurfaceSet, OnLatticeBodiesTheOutlineFacesAreTheMissingNeighbours) {
+  // A rectangle, an L (re-entrant corner), a 45-degree staircase and a notched polygon, with and
+  // without a mirror plane on the left face.
+  const std::vector<std::vector<Vec3>> outlines = {
+      {{0, 0, 0}, {3, 0, 0}, {3, 2, 0}, {0, 2, 0}},
+      {{0, 0, 0}, {3, 0, 0}, {3, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}},
+      {{0, 0, 0}, {4, 0, 0}, {4, 1, 0}, {1, 4, 0}, {0, 4, 0}},
+      {{0, 0, 0},
+       {4, 0, 0},
+       {4, 3, 0},
+       {2.5, 3, 0},
+       {2.5, 1.5, 0},
+       {1.5, 1.5, 0},
+       {1.5, 3, 0},
+       {0, 3, 0}}};
+  for (const auto& vertices : outlines)
+    for (const bool mirror : {false, true}) {
+      GeometrySpec geometry;
+      geometry.spacing = 0.5;
+      ShapeSpec shape;
+      shape.kind = ShapeSpec::Kind::Polygon;
+      shape.vertices = vertices;
+      shape.material = "soil";
+      geometry.shapes = {shape};
+      const NodeSets nodes = build_node_sets(geometry, 2, {"soil"});
+      std::vector<std::uint8_t> mirror_axes(nodes.sph_nodes.size(), 0);
+      if (mirror)
+        for (std::size_t i = 0; i < mirror_axes.size(); ++i)
+          if (nodes.sph_nodes.position[0][i] == 0.0) mirror_axes[i] = 0b01;
+      SurfaceSet surface;
+      outline_surface(nodes.cells, nodes.outline, nodes.sph_nodes, mirror_axes, surface);
+      const auto expected = missing_neighbours(nodes, mirror_axes);
+      ASSERT_EQ(surface.size(), expected.size()) << vertices.size() << " vertices, " << mirror;
+      for (std::size_t k = 0; k < surface.size(); ++k) {
+        EXPECT_EQ(surface.node[k], expected[k].first);
+        ASSERT_EQ(surface.facets_end(k) - surface.facets_begin(k),
+                  static_cast<std::int32_t>(expected[k].second.size()));
+        for (std::int32_t f = surface.facets_begin(k); f < surface.facets_end(k); ++f) {
+          EXPECT_EQ(surface.facet_normal(f),
+                    expected[k].second[static_cast<std::size_t>(f - surface.facets_begin(k))]);
+          // Each facet gathers the node's one or two outline facets along that face.
+          EXPECT_GE(surface.pieces(f).size(), 1u);
+          EXPECT_LE(surface.pieces(f).size(), 2u);
+        }
+      }
+    }
 }
 
 TEST(SurfaceSet, RebuildingWithTheSameSizeDoesNotAllocate) {
   const NodeSets nodes = test::rectangle_lattice(4.0, 3.0, 1.0);
   const std::vector<std::uint8_t> mirror_axes(nodes.sph_nodes.size(), 0);
   SurfaceSet surface;
-  lattice_surface(nodes, mirror_axes, surface);
+  outline_surface(nodes.cells, nodes.outline, nodes.sph_nodes, mirror_axes, surface);
   const double* normals = surface.normal[0].data();
   const std::int32_t* ids = surface.node.data();
-  lattice_surface(nodes, mirror_axes, surface);
+  outline_surface(nodes.cells, nodes.outline, nodes.sph_nodes, mirror_axes, surface);
   EXPECT_EQ(surface.normal[0].data(), normals);
   EXPECT_EQ(surface.node.data(), ids);
 }

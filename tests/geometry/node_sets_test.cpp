@@ -80,7 +80,7 @@ TEST(NodeSets, ConcavePolygonAndMaterialOverride) {
     weak += m == 1;
   EXPECT_EQ(weak, 4);  // the four nodes of the unit square
   int weak_cells = 0;
-  for (std::int32_t m : nodes.stress_point_material)
+  for (std::int32_t m : nodes.cells.materials())
     weak_cells += m == 1;
   EXPECT_EQ(weak_cells, 1);
 }

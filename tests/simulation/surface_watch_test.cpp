@@ -24,7 +24,7 @@ const std::string kBlock =
 
 TEST(SurfaceWatch, OutlineIsEveryNodeMissingALatticeNeighbourWhateverItsCondition) {
   const Simulation simulation(read_case_text(kBlock, "case.yaml"));
-  const std::vector<std::uint8_t> outline = lattice_perimeter(simulation.nodes());
+  const std::vector<std::uint8_t> outline = body_perimeter(simulation.nodes());
   std::size_t count = 0;
   for (std::uint8_t on : outline)
     count += on;

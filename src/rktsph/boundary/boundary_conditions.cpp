@@ -52,6 +52,28 @@ std::vector<Vector3> common_normals(const SurfaceSet& surface,
   return common;
 }
 
+// The share of node's face of outward normal `normal` that the facets with all their nodes in the
+// group make up: their measure over that of every outline facet of the face at the node.
+double loaded_share(const SurfaceSet& surface, const std::vector<std::int32_t>& surface_index,
+                    const Outline& outline, std::int32_t node, const Vector3& normal,
+                    const std::vector<std::uint8_t>& in_group) {
+  const std::int32_t k = surface_index[static_cast<std::size_t>(node)];
+  if (k < 0) return 0.0;
+  for (std::int32_t f = surface.facets_begin(static_cast<std::size_t>(k));
+       f < surface.facets_end(static_cast<std::size_t>(k)); ++f) {
+    if (!same_normal(surface.facet_normal(f), normal)) continue;
+    double loaded = 0.0, total = 0.0;
+    for (const std::int32_t piece : surface.pieces(f)) {
+      const auto facet = static_cast<std::size_t>(piece);
+      const double measure = outline.measure(facet);
+      total += measure;
+      if (in_group[static_cast<std::size_t>(outline.other_node(facet, node))]) loaded += measure;
+    }
+    return total > 0.0 ? loaded / total : 0.0;
+  }
+  return 0.0;
+}
+
 std::uint8_t all_components(int dimension) {
   return static_cast<std::uint8_t>((1u << dimension) - 1);
 }
@@ -249,8 +271,8 @@ BoundaryConditions::BoundaryConditions(
       if (std::abs(nodes.sph_nodes.position[m.axis][i] - m.coordinate) <= tolerance)
         mirror_axes_[i] |= static_cast<std::uint8_t>(1u << m.axis);
 
-  // The lattice's faces: directions with no neighbour node, unless a mirror plane closes them.
-  lattice_surface(nodes, mirror_axes_, surface_);
+  // The body's faces from the outline of its cells, unless a mirror plane closes them.
+  outline_surface(nodes.cells, nodes.outline, nodes.sph_nodes, mirror_axes_, surface_);
   std::vector<std::int32_t> surface_index(n, -1);
   for (std::size_t k = 0; k < surface_.size(); ++k)
     surface_index[static_cast<std::size_t>(surface_.node[k])] = static_cast<std::int32_t>(k);
@@ -318,8 +340,24 @@ BoundaryConditions::BoundaryConditions(
       }
       function[static_cast<std::size_t>(c)] = add_function(*condition.traction[c]);
     }
+    // The load acts on the outline facets whose nodes all belong to the group: a node gets the
+    // share of its face that such facets make up (1 inside the loaded width, 1/2 at its edge on a
+    // uniform spacing), so the nodal tractions integrate to the load over the group's width.
+    std::vector<std::uint8_t> in_group(n, 0);
     for (std::int32_t node : members)
-      tractions_.push_back({node, common.front(), function});
+      in_group[static_cast<std::size_t>(node)] = 1;
+    const std::size_t first_load = tractions_.size();
+    for (std::int32_t node : members) {
+      const double share =
+          loaded_share(surface_, surface_index, nodes.outline, node, common.front(), in_group);
+      if (share > 0.0) tractions_.push_back({node, common.front(), function, share});
+    }
+    if (tractions_.size() == first_load)
+      throw InputError(condition.where, "boundary_conditions.group", condition.group,
+                       "the group holds no whole facet of the surface (a traction acts on the "
+                       "facets whose nodes all belong to its group; a single node carries none)",
+                       "a group of neighbouring nodes along one free face, e.g. a box over the "
+                       "loaded width with both edge nodes in it");
   }
 
   // Drained faces: prescribed pore pressure (a Dirichlet row of the pressure solve too).
@@ -413,7 +451,7 @@ void BoundaryConditions::classify(SurfaceSet& surface) const {
 
 void BoundaryConditions::follow_configuration(const PointCloud& nodes) {
   // Built on the first call, while surface_ still holds the lattice facets and their normals.
-  if (!perimeter_) perimeter_.emplace(nodes_, surface_);
+  if (!perimeter_) perimeter_.emplace(nodes_.outline, nodes_.sph_nodes, surface_);
   perimeter_->update(nodes, surface_);
   update_contacts(nodes);
 }
@@ -471,6 +509,8 @@ void BoundaryConditions::replace_surface(const SurfaceSet& surface) {
   surface_.normal = surface.normal;
   surface_.reactions = surface.reactions;
   surface_.projected = surface.projected;
+  surface_.first_piece = surface.first_piece;
+  surface_.piece = surface.piece;
   classify(surface_);
 }
 
@@ -576,7 +616,7 @@ void BoundaryConditions::apply(double time, FieldArray& values,
     condition.biot_pore_pressure = biot_pore_pressure(values, r);
     for (std::size_t c = 0; c < 3; ++c) {
       if (load.function[c] < 0) continue;
-      condition.traction[c] = value[load.function[c]];
+      condition.traction[c] = load.share * value[load.function[c]];
       condition.components |= static_cast<std::uint8_t>(1u << c);
     }
     StressTensor sigma = stress_at(values, r);

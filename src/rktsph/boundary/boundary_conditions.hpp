@@ -83,11 +83,13 @@ class BoundaryConditions {
     int function;  // index into functions_
     double scale;  // value = scale * functions_[function](t)
   };
-  /// A traction condition's load on one node: sigma·n = t(t) on the face of normal `normal`.
+  /// A traction condition's load on one node: sigma·n = share t(t) on the face of normal
+  /// `normal`, share the part of the node's face that the loaded facets make up.
   struct ImposedTraction {
     std::int32_t node;
     Vector3 normal;
     std::array<int, 3> function;  // per global component, index into functions_; -1: not given
+    double share;
   };
   /// A fixed plane its group's nodes may reach but not cross (docs/theory.md §9.13).
   struct RigidWall {

@@ -15,8 +15,9 @@ std::array<double, 2> perpendicular(const PointCloud& nodes, std::int32_t from, 
 
 }  // namespace
 
-PerimeterNormals::PerimeterNormals(const NodeSets& reference, const SurfaceSet& surface)
-    : dimension_(reference.dimension) {
+PerimeterNormals::PerimeterNormals(const Outline& outline, const PointCloud& reference,
+                                   const SurfaceSet& surface)
+    : dimension_(outline.dimension()) {
   if (dimension_ != 2) return;
   ends_.resize(surface.facet_count());
   orientation_.assign(surface.facet_count(), 1.0);
@@ -24,18 +25,19 @@ PerimeterNormals::PerimeterNormals(const NodeSets& reference, const SurfaceSet& 
     const std::int32_t node = surface.node[k];
     for (std::int32_t f = surface.facets_begin(k); f < surface.facets_end(k); ++f) {
       const Vector3 normal = surface.facet_normal(f);
-      // The face runs along the lattice axis the normal is not on.
-      const std::size_t along = std::abs(normal[0]) > 0.5 ? 1 : 0;
+      // The neighbours along the face: the far ends of the outline facets the facet gathers,
+      // the one lower along the face's axis (the axis the normal mostly is not on) first.
+      const std::size_t along = std::abs(normal[0]) > std::abs(normal[1]) ? 1 : 0;
       std::array<std::int32_t, 2> ends{node, node};
-      for (int side = 0; side < 2; ++side) {
-        LatticeIndex index = reference.node_index[static_cast<std::size_t>(node)];
-        index[along] += side == 0 ? -1 : 1;
-        if (const std::int32_t neighbour = reference.node_at(index); neighbour >= 0)
-          ends[static_cast<std::size_t>(side)] = neighbour;
+      for (const std::int32_t piece : surface.pieces(f)) {
+        const std::int32_t other = outline.other_node(static_cast<std::size_t>(piece), node);
+        const bool lower = reference.position[along][static_cast<std::size_t>(other)] <
+                           reference.position[along][static_cast<std::size_t>(node)];
+        ends[lower ? 0 : 1] = other;
       }
       const auto i = static_cast<std::size_t>(f);
       ends_[i] = ends;
-      const auto p = perpendicular(reference.sph_nodes, ends[0], ends[1]);
+      const auto p = perpendicular(reference, ends[0], ends[1]);
       orientation_[i] = p[0] * normal[0] + p[1] * normal[1] >= 0.0 ? 1.0 : -1.0;
     }
   }

@@ -1,7 +1,7 @@
-// The normals of a lattice body's faces on its moving configuration (docs/theory.md §9.7): each
-// facet keeps its identity (the node and the side of the lattice it faces), and its outward unit
-// normal is the perpendicular of the perimeter through the node, from the current positions of the
-// node's two neighbours along the face.
+// The normals of a body's faces on its moving configuration (docs/theory.md §9.7): each facet
+// keeps its identity (the node and the outline facets it gathers), and its outward unit normal is
+// the perpendicular of the perimeter through the node, from the current positions of the node's
+// two neighbours along the face (the other ends of its outline facets).
 #pragma once
 
 #include <array>
@@ -10,15 +10,16 @@
 
 #include "rktsph/boundary/surface_set.hpp"
 #include "rktsph/core/point_cloud.hpp"
-#include "rktsph/geometry/node_sets.hpp"
+#include "rktsph/mesh/outline.hpp"
 
 namespace rktsph {
 
 class PerimeterNormals {
  public:
-  /// The facets of `surface`, a lattice surface of `reference` (lattice_surface): for each, the
-  /// nodes before and after it along its face (the node itself where the face ends there).
-  PerimeterNormals(const NodeSets& reference, const SurfaceSet& surface);
+  /// The facets of `surface`, made from `outline` (outline_surface) on the configuration
+  /// `reference`: for each, the nodes before and after it along its face (the node itself where
+  /// the face ends there).
+  PerimeterNormals(const Outline& outline, const PointCloud& reference, const SurfaceSet& surface);
 
   /// Sets the normal of every facet of `surface` (the same facets) from the positions `nodes`.
   /// A 1D body keeps its normals -x and +x.

@@ -1,6 +1,10 @@
 #include "rktsph/boundary/surface_set.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+
+#include "rktsph/mesh/node_classification.hpp"
 
 namespace rktsph {
 
@@ -19,6 +23,8 @@ void SurfaceSet::clear() {
     component.clear();
   reactions.clear();
   projected.clear();
+  first_piece.assign(1, 0);
+  piece.clear();
 }
 
 void SurfaceSet::add_node(std::int32_t id) {
@@ -27,9 +33,12 @@ void SurfaceSet::add_node(std::int32_t id) {
   first_facet.push_back(first_facet.back());
 }
 
-void SurfaceSet::add_facet(const Vector3& unit_normal) {
+void SurfaceSet::add_facet(const Vector3& unit_normal, std::span<const std::int32_t> pieces) {
   for (std::size_t c = 0; c < 3; ++c)
     normal[c].push_back(unit_normal[c]);
+  if (first_piece.empty()) first_piece.push_back(0);
+  piece.insert(piece.end(), pieces.begin(), pieces.end());
+  first_piece.push_back(static_cast<std::int32_t>(piece.size()));
   reactions.push_back(0);
   projected.push_back(1);
   ++first_facet.back();
@@ -54,23 +63,46 @@ SurfaceNormals SurfaceSet::projected_normals(std::size_t k) const {
   return normals;
 }
 
-void lattice_surface(const NodeSets& nodes, std::span<const std::uint8_t> mirror_axes,
-                     SurfaceSet& surface) {
+void outline_surface(const CellComplex& cells, const Outline& outline, const PointCloud& nodes,
+                     std::span<const std::uint8_t> mirror_axes, SurfaceSet& surface) {
   surface.clear();
-  const int d = nodes.dimension;
-  for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i) {
-    surface.add_node(static_cast<std::int32_t>(i));
-    for (int a = 0; a < d; ++a) {
-      if ((mirror_axes[i] >> a) & 1u) continue;  // a mirror plane closes both directions
-      for (int sign : {-1, 1}) {
-        LatticeIndex neighbour = nodes.node_index[i];
-        neighbour[static_cast<std::size_t>(a)] += sign;
-        if (nodes.node_at(neighbour) >= 0) continue;
-        Vector3 n{};
-        n[static_cast<std::size_t>(a)] = static_cast<double>(sign);
-        surface.add_facet(n);
+  const int d = cells.dimension();
+  struct Face {
+    Vector3 normal;
+    int order;  // 2 a + (n_a > 0) for the dominant axis a: -x, +x, -y, +y
+    double angle;
+    std::vector<std::int32_t> pieces;
+  };
+  std::vector<Face> faces;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const unsigned mirrors = mirror_axes.empty() ? 0u : unsigned{mirror_axes[i]};
+    const double fraction =
+        filled_fraction(cells, nodes, i) * static_cast<double>(1u << std::popcount(mirrors));
+    if (node_place(fraction, d) != NodePlace::Boundary) continue;
+    faces.clear();
+    for (const std::int32_t f : outline.facets_at(i)) {
+      const Vector3 n = outline.normal(static_cast<std::size_t>(f));
+      const int axis = std::abs(n[1]) > std::abs(n[0]) ? 1 : 0;
+      if (((mirrors >> axis) & 1u) && std::abs(n[static_cast<std::size_t>(axis)]) > 1.0 - 1e-9)
+        continue;  // a mirror plane closes this side
+      auto same = std::find_if(faces.begin(), faces.end(), [&](const Face& face) {
+        return face.normal[0] * n[0] + face.normal[1] * n[1] > 1.0 - 1e-9;
+      });
+      if (same == faces.end()) {
+        faces.push_back({n,
+                         2 * axis + (n[static_cast<std::size_t>(axis)] > 0.0 ? 1 : 0),
+                         std::atan2(n[1], n[0]),
+                         {}});
+        same = faces.end() - 1;
       }
+      same->pieces.push_back(f);
     }
+    std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) {
+      return a.order != b.order ? a.order < b.order : a.angle < b.angle;
+    });
+    surface.add_node(static_cast<std::int32_t>(i));
+    for (const Face& face : faces)
+      surface.add_facet(face.normal, face.pieces);
     surface.drop_node_without_facets();
   }
 }

@@ -245,6 +245,7 @@ NodeSets build_node_sets(const GeometrySpec& geometry, int dimension,
   // A stress point sits at the centre of every lattice cell whose corners are all nodes and whose
   // centre lies inside the body (the second test matters only for concave outlines).
   const std::int32_t cells_y = dimension >= 2 ? ny - 1 : 1;
+  std::vector<std::int32_t> cell_material;
   for (std::int32_t j = 0; j < cells_y; ++j)
     for (std::int32_t i = 0; i + 1 < nx; ++i) {
       bool complete = true;
@@ -259,8 +260,27 @@ NodeSets build_node_sets(const GeometrySpec& geometry, int dimension,
       if (shape < 0) continue;
       nodes.stress_points.push_back(centre, node_volume);
       nodes.stress_point_index.push_back(index);
-      nodes.stress_point_material.push_back(material_of_shape(shape));
+      cell_material.push_back(material_of_shape(shape));
     }
+  // The lattice cells as a complex: corners counter-clockwise from the lower left (2D), left to
+  // right (1D).
+  nodes.cells = CellComplex(dimension, nodes.sph_nodes.size());
+  for (std::size_t p = 0; p < nodes.stress_points.size(); ++p) {
+    const LatticeIndex& lower = nodes.stress_point_index[p];
+    if (dimension < 2) {
+      const std::array<std::int32_t, 2> corners{nodes.node_at(lower),
+                                                nodes.node_at({lower[0] + 1, 0, 0})};
+      nodes.cells.add_cell(CellKind::Segment, corners, cell_material[p]);
+    } else {
+      const std::array<std::int32_t, 4> corners{nodes.node_at(lower),
+                                                nodes.node_at({lower[0] + 1, lower[1], 0}),
+                                                nodes.node_at({lower[0] + 1, lower[1] + 1, 0}),
+                                                nodes.node_at({lower[0], lower[1] + 1, 0})};
+      nodes.cells.add_cell(CellKind::Quadrilateral, corners, cell_material[p]);
+    }
+  }
+  nodes.cells.finish(nodes.sph_nodes);
+  nodes.outline = Outline(nodes.cells, nodes.sph_nodes);
 
   if (nodes.sph_nodes.size() < 2)
     throw InputError(geometry.where, "geometry.spacing", fmt::format("{}", dx),

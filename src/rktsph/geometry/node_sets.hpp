@@ -10,6 +10,8 @@
 
 #include "rktsph/case/case_description.hpp"
 #include "rktsph/core/point_cloud.hpp"
+#include "rktsph/mesh/cell_complex.hpp"
+#include "rktsph/mesh/outline.hpp"
 
 namespace rktsph {
 
@@ -23,10 +25,13 @@ struct NodeSets {
 
   PointCloud sph_nodes;
   PointCloud stress_points;
-  std::vector<LatticeIndex> node_index;             ///< lattice index of each SPH node
-  std::vector<LatticeIndex> stress_point_index;     ///< index of the cell's lower corner node
-  std::vector<std::int32_t> node_material;          ///< index into `material_names`
-  std::vector<std::int32_t> stress_point_material;  ///< material covering the cell centre
+  std::vector<LatticeIndex> node_index;          ///< lattice index of each SPH node
+  std::vector<LatticeIndex> stress_point_index;  ///< index of the cell's lower corner node
+  std::vector<std::int32_t> node_material;       ///< index into `material_names`
+  /// The cells: cell p carries stress point p; its material is the one covering its centre.
+  CellComplex cells;
+  /// The boundary facets of the cells, with normals on the reference configuration.
+  Outline outline;
   std::vector<std::string> material_names;
 
   /// SPH node at a lattice index, or -1 if there is none.

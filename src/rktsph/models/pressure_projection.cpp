@@ -168,27 +168,29 @@ void PressureProjection::assemble(double dt) {
 
 std::vector<Eigen::Triplet<double>> PressureProjection::checkerboard_stabilisation(
     double dt) const {
-  // w_c b_c b_c^T per lattice cell, b_c = (+1, -1, -1, +1) the twist of its corners. The cells are
-  // those of the stress points (all four corners are nodes); mirrored cells are left out, which is
-  // the V_eff weighting of Ltilde (docs/theory.md §6.6).
+  // w_c b_c b_c^T per quadrilateral cell, b_c = (+1, -1, +1, -1) the twist of its corners
+  // (counter-clockwise). The cells are those of the stress points; mirrored cells are left out,
+  // which is the V_eff weighting of Ltilde (docs/theory.md §6.6).
   std::vector<Eigen::Triplet<double>> entries;
   if (nodes_.dimension != 2 || checkerboard_theta_ <= 0.0) return entries;
-  for (const LatticeIndex& corner : nodes_.stress_point_index) {
-    std::array<std::int32_t, 4> node{-1, -1, -1, -1};
+  // The corners in lattice order (lower row, then upper row), the order the sums were written in.
+  constexpr std::array<std::size_t, 4> kRowOrder{0, 1, 3, 2};
+  constexpr std::array<double, 4> kTwist{1.0, -1.0, 1.0, -1.0};
+  const CellComplex& cells = nodes_.cells;
+  for (std::size_t p = 0; p < cells.cell_count(); ++p) {
+    if (cells.kind(p) != CellKind::Quadrilateral) continue;
+    const auto corners = cells.corners(p);
     double density = 0.0, volume = 0.0;
-    for (int c = 0; c < 4; ++c) {
-      node[c] = nodes_.node_at({corner[0] + (c & 1), corner[1] + (c >> 1), corner[2]});
-      if (node[c] < 0) break;
-      density += 0.25 * density_[static_cast<std::size_t>(node[c])];
-      volume += 0.25 * nodes_.sph_nodes.volume[static_cast<std::size_t>(node[c])];
+    for (const std::size_t k : kRowOrder) {
+      const auto node = static_cast<std::size_t>(corners[k]);
+      density += 0.25 * density_[node];
+      volume += 0.25 * nodes_.sph_nodes.volume[node];
     }
-    if (std::find(node.begin(), node.end(), -1) != node.end()) continue;
     const double weight =
         checkerboard_theta_ * alpha_ * alpha_ * dt / density * volume * checkerboard_rate_ / 16.0;
-    auto sign = [](int c) { return ((c & 1) + (c >> 1)) % 2 == 0 ? 1.0 : -1.0; };
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b)
-        entries.emplace_back(node[a], node[b], weight * sign(a) * sign(b));
+    for (const std::size_t a : kRowOrder)
+      for (const std::size_t b : kRowOrder)
+        entries.emplace_back(corners[a], corners[b], weight * kTwist[a] * kTwist[b]);
   }
   return entries;
 }

@@ -38,7 +38,7 @@ inline constexpr double kDistortedCornerRatio = 0.2;
 
 class ConfigurationMotion {
  public:
-  /// The cells of `reference` (a stress point's corners are its lower corner node plus {0,1}^d).
+  /// Moves the cells of `reference` (its cell complex).
   explicit ConfigurationMotion(const NodeSets& reference);
 
   /// Places node i at X_i + u_i and each stress point at the mean of its corners; sets each
@@ -52,13 +52,9 @@ class ConfigurationMotion {
   const std::vector<double>& node_volume_ratio() const { return node_volume_ratio_; }
 
  private:
-  const NodeSets& reference_;
-  std::vector<std::array<std::int32_t, 4>> corners_;  // counter-clockwise from the lower left
-  std::vector<double> reference_cell_area_;           // of the corner polygon [m^d]
-  std::vector<std::array<double, 4>> reference_corner_jacobian_;
-  std::vector<double> cell_area_;
-  std::vector<std::int32_t> node_cell_start_;  // cells of node n: node_cell_[start[n], start[n+1])
-  std::vector<std::int32_t> node_cell_;
+  const NodeSets& reference_;  // its cells: corners, cells at each node, reference measures
+  std::vector<std::array<double, kMaxCellCorners>> reference_corner_jacobian_;
+  std::vector<double> cell_area_;                 // current measure of each cell [m^d]
   std::vector<double> reference_node_cell_area_;  // sum of the reference areas of node n's cells
   std::vector<double> node_volume_ratio_;
   CellQuality quality_;

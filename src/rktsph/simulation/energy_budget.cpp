@@ -25,56 +25,22 @@ std::array<Vector, 3> total_stress(const PhysicsModel& model, const FieldArray& 
   return sigma;
 }
 
-// The area of facet `axis` (the lattice axis of its normal) of node i: in 2D half the current
-// distances to the node's lattice neighbours along the other axis (the node's share of the face);
-// 1 in 1D.
-double facet_area(const Simulation& simulation, std::int32_t node, int axis) {
+// The area of facet f of a surface node: half the current lengths of the outline facets it
+// gathers (the node's share of each); 1 in 1D.
+double facet_area(const Simulation& simulation, const SurfaceSet& surface, std::int32_t node,
+                  std::int32_t f) {
   const NodeSets& nodes = simulation.nodes();
   if (nodes.dimension == 1) return 1.0;
   const PointCloud& current = simulation.state().configuration.sph_nodes;
   const auto i = static_cast<std::size_t>(node);
-  const auto along = static_cast<std::size_t>(1 - axis);
   double area = 0.0;
-  for (const int sign : {-1, 1}) {
-    LatticeIndex index = nodes.node_index[i];
-    index[along] += sign;
-    const std::int32_t neighbour = nodes.node_at(index);
-    if (neighbour < 0) continue;
-    const auto j = static_cast<std::size_t>(neighbour);
+  for (const std::int32_t piece : surface.pieces(f)) {
+    const auto j =
+        static_cast<std::size_t>(nodes.outline.other_node(static_cast<std::size_t>(piece), node));
     area += 0.5 * std::hypot(current.position[0][j] - current.position[0][i],
                              current.position[1][j] - current.position[1][i]);
   }
   return area;
-}
-
-// The lattice axis of each facet of node i, in the order lattice_surface made them (-x, +x, -y,
-// +y, skipping directions with a neighbour or a mirror plane); the facets stay those of the
-// lattice when their normals turn with the body (docs/theory.md §9.7). Empty if the count does not
-// match `facets`.
-std::vector<int> facet_axes(const Simulation& simulation, std::int32_t node, std::int32_t facets) {
-  const NodeSets& nodes = simulation.nodes();
-  const auto i = static_cast<std::size_t>(node);
-  const std::span<const std::uint8_t> mirror = simulation.boundary_conditions().mirror_axes();
-  std::vector<int> axes;
-  for (int a = 0; a < nodes.dimension; ++a) {
-    if (!mirror.empty() && ((mirror[i] >> a) & 1u)) continue;
-    for (const int sign : {-1, 1}) {
-      LatticeIndex index = nodes.node_index[i];
-      index[static_cast<std::size_t>(a)] += sign;
-      if (nodes.node_at(index) < 0) axes.push_back(a);
-    }
-  }
-  if (static_cast<std::int32_t>(axes.size()) != facets) axes.clear();
-  return axes;
-}
-
-// The axis of the largest component of a unit normal.
-int dominant_axis(const Vector& n) {
-  int axis = 0;
-  for (int a = 1; a < 3; ++a)
-    if (std::abs(n[static_cast<std::size_t>(a)]) > std::abs(n[static_cast<std::size_t>(axis)]))
-      axis = a;
-  return axis;
 }
 
 double boundary_power(const Simulation& simulation) {
@@ -87,11 +53,9 @@ double boundary_power(const Simulation& simulation) {
     const std::int32_t node = surface.node[k];
     const auto i = static_cast<std::size_t>(node);
     const std::int32_t begin = surface.facets_begin(k), end = surface.facets_end(k);
-    const std::vector<int> axes = facet_axes(simulation, node, end - begin);
     const std::array<Vector, 3> sigma = total_stress(model, values, i);
     for (std::int32_t f = begin; f < end; ++f) {
       const Vector n = surface.facet_normal(f);
-      const int axis = axes.empty() ? dominant_axis(n) : axes[static_cast<std::size_t>(f - begin)];
       double traction_velocity = 0.0;  // (sigma n) . v
       for (int a = 0; a < d; ++a) {
         double traction = 0.0;
@@ -99,7 +63,7 @@ double boundary_power(const Simulation& simulation) {
           traction += sigma[static_cast<std::size_t>(a)][b] * n[b];
         traction_velocity += traction * values(model.velocity_field(a), i);
       }
-      power += traction_velocity * facet_area(simulation, node, axis);
+      power += traction_velocity * facet_area(simulation, surface, node, f);
     }
   }
   return power;

@@ -17,19 +17,19 @@ void detect_current_surface(const Simulation& simulation, FreeSurface& out) {
   detect_free_surface(nodes, cells, options, out);
 }
 
-std::vector<std::uint8_t> lattice_perimeter(const NodeSets& nodes) {
-  // The lattice faces with no mirror plane closing any of them: the detector sees no images.
-  const std::vector<std::uint8_t> no_mirrors(nodes.sph_nodes.size(), 0);
-  SurfaceSet outline;
-  lattice_surface(nodes, no_mirrors, outline);
+std::vector<std::uint8_t> body_perimeter(const NodeSets& nodes) {
+  // The faces of the outline with no mirror plane closing any of them: the detector sees no
+  // images.
+  SurfaceSet surface;
+  outline_surface(nodes.cells, nodes.outline, nodes.sph_nodes, {}, surface);
   std::vector<std::uint8_t> perimeter(nodes.sph_nodes.size(), 0);
-  for (std::int32_t node : outline.node)
+  for (std::int32_t node : surface.node)
     perimeter[static_cast<std::size_t>(node)] = 1;
   return perimeter;
 }
 
 SurfaceAgreement compare_with_perimeter(const Simulation& simulation, const FreeSurface& detected) {
-  const std::vector<std::uint8_t> perimeter = lattice_perimeter(simulation.nodes());
+  const std::vector<std::uint8_t> perimeter = body_perimeter(simulation.nodes());
   SurfaceAgreement agreement;
   for (std::size_t i = 0; i < perimeter.size(); ++i) {
     agreement.perimeter_nodes += perimeter[i];

@@ -19,12 +19,13 @@ inline constexpr double kDetectionSmoothingOverSpacing = 1.3;
 /// Runs the detector on the SPH nodes of the run's current configuration (2D and 1D).
 void detect_current_surface(const Simulation& simulation, FreeSurface& out);
 
-/// The nodes of the body's outline: those missing a lattice neighbour along some axis. A moving
-/// body keeps its cells, so this is its outline at any deformation (§9.1), whatever conditions act
-/// on it (a fixed base is on it too: the detector sees only the nodes).
-std::vector<std::uint8_t> lattice_perimeter(const NodeSets& nodes);
+/// The nodes on the outline of the body's cells (re-entrant corners excepted, as in the surface the
+/// conditions act on). A moving body keeps its cells, so this is its outline at any deformation
+/// (§9.1), whatever conditions act on it (a fixed base is on it too: the detector sees only the
+/// nodes).
+std::vector<std::uint8_t> body_perimeter(const NodeSets& nodes);
 
-/// The detected surface against the lattice perimeter.
+/// The detected surface against the body perimeter.
 struct SurfaceAgreement {
   std::size_t perimeter_nodes = 0;
   std::size_t missed = 0;          ///< perimeter nodes not detected

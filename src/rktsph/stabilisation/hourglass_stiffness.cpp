@@ -54,26 +54,24 @@ HourglassStiffness build_hourglass_stiffness(const NodeSets& nodes, const Physic
   control.stiffness.resize(cells);
   std::vector<double> volume(count, 0.0);
   std::vector<std::int32_t> incidence(count + 1, 0);
-  constexpr std::array<std::array<int, 2>, 4> kOffset = {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+  const CellComplex& complex = nodes.cells;
   for (std::size_t p = 0; p < cells; ++p) {
+    if (complex.kind(p) != CellKind::Quadrilateral)
+      throw RunError(fmt::format(
+          "the cell of the stress point at {} is a {}: the Flanagan-Belytschko hourglass "
+          "stiffness needs quadrilaterals",
+          describe_point(nodes.stress_points, p), kind_name(complex.kind(p))));
     std::array<double, 4> x{}, y{};
-    for (int a = 0; a < 4; ++a) {
-      LatticeIndex corner = nodes.stress_point_index[p];
-      corner[0] += kOffset[a][0];
-      corner[1] += kOffset[a][1];
-      const std::int32_t node = nodes.node_at(corner);
-      if (node < 0)
-        throw RunError(
-            fmt::format("the cell of the stress point at {} lacks a corner node, so its "
-                        "hourglass mode cannot be controlled",
-                        describe_point(nodes.stress_points, p)));
+    const auto corners = complex.corners(p);
+    for (std::size_t a = 0; a < 4; ++a) {
+      const std::int32_t node = corners[a];
       control.corners[p][a] = node;
-      x[a] = nodes.sph_nodes.position[0][node];
-      y[a] = nodes.sph_nodes.position[1][node];
+      x[a] = nodes.sph_nodes.position[0][static_cast<std::size_t>(node)];
+      y[a] = nodes.sph_nodes.position[1][static_cast<std::size_t>(node)];
     }
     const CellGeometry cell = cell_geometry(x, y);
     control.gamma[p] = cell.gamma;
-    const std::int32_t material = nodes.stress_point_material[p];
+    const std::int32_t material = nodes.cells.material(p);
     const auto moduli = model.in_plane_moduli(material);
     const double fraction = model.elastic(material) ? epsilon.elastic : epsilon.viscoplastic;
     control.stiffness[p] =

@@ -382,7 +382,7 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
     const int v = model_.velocity_field(a);
     parallel_copy(half_step_.field(v), nodes_.stress_points.size(), point_velocity_.field(a));
   }
-  model_.flux_rate(nodes_.stress_point_material, point_gradient_, rate_);
+  model_.flux_rate(nodes_.cells.materials(), point_gradient_, rate_);
   if (model_.objective_stress_rate()) {  // docs/theory.md eqs. 9.2, 9.3
     model_.rotate_stress(point_gradient_, velocity_gradient_of_fields_, 0.5 * dt,
                          nodes_.stress_points.size(), half_step_);
@@ -390,16 +390,16 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
                         state.configuration.stress_points.volume.data(),
                         nodes_.stress_points.volume.data(), nullptr);
   }
-  model_.advance(nodes_.stress_point_material, rate_, state.time, 0.5 * dt, half_step_,
+  model_.advance(nodes_.cells.materials(), rate_, state.time, 0.5 * dt, half_step_,
                  point_internal_);
   if (hourglass_stiffness_.active()) {
-    model_.flowing(nodes_.stress_point_material, half_step_, point_internal_, point_flowing_);
+    model_.flowing(nodes_.cells.materials(), half_step_, point_internal_, point_flowing_);
     for (std::size_t p = 0; p < point_flowing_.size(); ++p)
       hourglass_factor_[p] = point_flowing_[p] ? options_.hourglass_plastic_fraction : 1.0;
   }
   if (viscosity_length_ > 0.0)
-    model_.add_artificial_viscosity(nodes_.stress_point_material, point_gradient_,
-                                    viscosity_length_, half_step_);
+    model_.add_artificial_viscosity(nodes_.cells.materials(), point_gradient_, viscosity_length_,
+                                    half_step_);
 }
 
 void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
@@ -449,7 +449,7 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   add_half_step_displacement(state, dt);
   if (strain_hourglass_stiffness_.active())
     strain_hourglass_stiffness_.add_stress(
-        model_, operators_.nodes_to_points, nodes_.stress_point_material, state.displacement,
+        model_, operators_.nodes_to_points, nodes_.cells.materials(), state.displacement,
         state.strain, point_gradient_, dt, state.fields, half_step_);
   // Step 2: gradient of the half-step values at the SPH nodes, full step from Phi^n.
   apply_operator(operators_.points_to_nodes, half_step_, model_.parities(), nullptr,

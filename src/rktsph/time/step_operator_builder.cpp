@@ -7,32 +7,18 @@
 #include "rktsph/core/error.hpp"
 #include "rktsph/core/parallel.hpp"
 #include "rktsph/core/step_time_split.hpp"
+#include "rktsph/mesh/node_classification.hpp"
 #include "rktsph/time/step_operators.hpp"
 
 namespace rktsph {
 
 namespace {
 
-// A node whose cells do not all carry a stress point is a boundary node and gets the half-step of
-// step 1b, except at a re-entrant corner (2D, three cells of four, e.g. the toe of a cut): there
-// the three stress points surround the node, so the cross-set gradient is already linear-exact,
-// while the self-including boundary closure is unstable (spectral radius 1.2-1.45 per step on an
-// L-shaped lattice at C = 0.3-0.9; the corner lies on no face, so nothing constrains its
-// half-step).
-bool is_incomplete(int occupied, int dimension) {
-  return occupied < (1 << dimension);
-}
-
 /// The rows of the last build_rows that compute_row found degenerate, into `report`.
 void collect_degenerate_rows(const OperatorWorkspace& workspace, std::size_t rows,
                              StencilReport& report) {
   for (std::size_t r = 0; r < rows; ++r)
     if (!workspace.regular[r]) report.degenerate_rows.push_back(static_cast<std::int32_t>(r));
-}
-
-bool needs_boundary_half_step(int occupied, int dimension) {
-  const bool reentrant_corner = dimension == 2 && occupied == (1 << dimension) - 1;
-  return is_incomplete(occupied, dimension) && !reentrant_corner;
 }
 
 }  // namespace
@@ -74,33 +60,30 @@ void StepOperatorBuilder::classify(const Configuration& configuration, StepOpera
     operators.incomplete_nodes.assign(incomplete_nodes_.begin(), incomplete_nodes_.end());
     return;
   }
-  // The cells around a node are counted from the topology: stress point p is the cell whose
-  // corners are its lower corner node plus {0, 1}^d. A node on a mirror plane also has the images
-  // of its cells across it, one more set per plane (docs/theory.md §2.6).
+  // Where each node sits, from the angle its cells fill around it; a node on a mirror plane also
+  // has the images of its cells across it, which double its fraction once per plane (docs/theory.md
+  // §2.6, §3.5). A node not inside gets the half-step of step 1b, except at a re-entrant corner
+  // (2D, e.g. the toe of a cut): there the stress points surround the node on more than a
+  // half-plane, so the cross-set gradient is already linear-exact, while the self-including
+  // boundary closure is unstable (spectral radius 1.2-1.45 per step on an L-shaped lattice at
+  // C = 0.3-0.9; the corner lies on no face, so nothing constrains its half-step).
   const int d = reference_.dimension;
   const std::size_t n = configuration.sph_nodes.size();
-  cells_at_node_.assign(n, 0);
-  for (const LatticeIndex& lower : reference_.stress_point_index)
-    for (unsigned corner = 0; corner < (1u << d); ++corner) {
-      LatticeIndex index = lower;
-      for (int a = 0; a < d; ++a)
-        index[static_cast<std::size_t>(a)] += static_cast<std::int32_t>((corner >> a) & 1u);
-      const std::int32_t node = reference_.node_at(index);
-      if (node >= 0) ++cells_at_node_[static_cast<std::size_t>(node)];
-    }
   operators.node_to_boundary_row.assign(n, -1);
   operators.boundary_nodes.clear();
   operators.incomplete_nodes.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    const int occupied = cells_at_node_[i] << std::popcount(unsigned{mirror_axes_[i]});
-    if (occupied == 0)
+    const double fraction = filled_fraction(reference_.cells, reference_.sph_nodes, i) *
+                            static_cast<double>(1u << std::popcount(unsigned{mirror_axes_[i]}));
+    const NodePlace place = node_place(fraction, d);
+    if (place == NodePlace::Isolated)
       throw RunError(fmt::format(
-          "the SPH node at {} belongs to no lattice cell (a shape vertex or a one-node-wide strip "
+          "the SPH node at {} belongs to no cell (a shape vertex or a one-node-wide strip "
           "that touches no cell), so nothing moves it; widen the shape to whole cells",
           describe_point(configuration.sph_nodes, i)));
-    if (is_incomplete(occupied, d))
+    if (place != NodePlace::Interior)
       operators.incomplete_nodes.push_back(static_cast<std::int32_t>(i));
-    if (needs_boundary_half_step(occupied, d)) {
+    if (place == NodePlace::Boundary) {
       operators.node_to_boundary_row[i] =
           static_cast<std::int32_t>(operators.boundary_nodes.size());
       operators.boundary_nodes.push_back(static_cast<std::int32_t>(i));

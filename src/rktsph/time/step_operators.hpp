@@ -120,7 +120,6 @@ class StepOperatorBuilder {
   OperatorOptions operator_options_;
   OperatorOptions filter_options_;  // the hourglass filter's round trip
   std::vector<std::uint8_t> mirror_axes_;
-  std::vector<std::int32_t> cells_at_node_;  // cells (stress points) with the node as a corner
   // The classification depends only on the lattice topology and the mirror axes: made once and
   // copied into later builds' operators (a moving configuration keeps its topology, §9.1).
   bool classified_ = false;

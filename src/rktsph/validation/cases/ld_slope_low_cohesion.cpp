@@ -99,9 +99,8 @@ Collapse run_collapse(const ValidationContext& context, double spacing, const st
     const PointCloud& points = state.configuration.stress_points;
     const PointCloud& reference = simulation.nodes().stress_points;
     for (std::size_t p = 0; p < points.size(); ++p) {
-      const double density =
-          simulation.model().density(simulation.nodes().stress_point_material[p]) *
-          reference.volume[p] / points.volume[p];
+      const double density = simulation.model().density(simulation.nodes().cells.material(p)) *
+                             reference.volume[p] / points.volume[p];
       result.mass += density * points.volume[p];
     }
     FreeSurface detected;
