@@ -43,7 +43,8 @@ class CellComplex {
   /// The cells that have node n as a corner, in increasing order.
   std::span<const std::int32_t> cells_of(std::size_t node) const {
     const auto start = static_cast<std::size_t>(node_cell_start_[node]);
-    return {node_cell_.data() + start, static_cast<std::size_t>(node_cell_start_[node + 1]) - start};
+    return {node_cell_.data() + start,
+            static_cast<std::size_t>(node_cell_start_[node + 1]) - start};
   }
   std::int32_t material(std::size_t cell) const { return material_[cell]; }
   std::span<const std::int32_t> materials() const { return material_; }

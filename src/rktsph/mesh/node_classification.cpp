@@ -28,7 +28,8 @@ double filled_fraction(const CellComplex& cells, const PointCloud& nodes, std::s
       ++k;
     const auto at = static_cast<std::size_t>(corners[static_cast<std::size_t>(k)]);
     const auto next = static_cast<std::size_t>(corners[static_cast<std::size_t>((k + 1) % n)]);
-    const auto previous = static_cast<std::size_t>(corners[static_cast<std::size_t>((k + n - 1) % n)]);
+    const auto previous =
+        static_cast<std::size_t>(corners[static_cast<std::size_t>((k + n - 1) % n)]);
     const double ax = nodes.position[0][next] - nodes.position[0][at];
     const double ay = nodes.position[1][next] - nodes.position[1][at];
     const double bx = nodes.position[0][previous] - nodes.position[0][at];

@@ -35,8 +35,7 @@ Outline::Outline(const CellComplex& cells, const PointCloud& nodes)
   });
   for (std::size_t k = 0; k < faces.size();) {
     std::size_t end = k + 1;
-    while (end < faces.size() && faces[end].low == faces[k].low &&
-           faces[end].high == faces[k].high)
+    while (end < faces.size() && faces[end].low == faces[k].low && faces[end].high == faces[k].high)
       ++end;
     if (end == k + 1) {
       first_.push_back(faces[k].first);
