@@ -10,6 +10,7 @@
 
 #include "rktsph/core/error.hpp"
 #include "rktsph/materials/invariants.hpp"
+#include "rktsph/materials/overstress_integrator.hpp"
 
 namespace rktsph {
 
@@ -67,11 +68,10 @@ class PointRates {
 
   /// rate = f(time, state); `viscoplastic = false` gives the purely elastic rate (for the
   /// predictor used in choosing sub-steps).
-  void evaluate(double time, const std::vector<double>& state, std::vector<double>& rate,
-                bool viscoplastic) {
+  void evaluate(double time, const double* state, double* rate, bool viscoplastic) {
     SymmetricTensor stress;
-    std::copy_n(state.begin() + kStressOffset, 6, stress.begin());
-    const std::span<const double> internal(state.data() + kInternalOffset, internal_rate_.size());
+    std::copy_n(state + kStressOffset, 6, stress.begin());
+    const std::span<const double> internal(state + kInternalOffset, internal_rate_.size());
     SymmetricTensor viscoplastic_strain_rate{};
     std::fill(internal_rate_.begin(), internal_rate_.end(), 0.0);
     if (viscoplastic)
@@ -96,7 +96,7 @@ class PointRates {
       rate[kStressOffset + i] = stress_rate[i];
       rate[kStrainOffset + i] = strain_rate[i];
     }
-    std::copy(internal_rate_.begin(), internal_rate_.end(), rate.begin() + kInternalOffset);
+    std::copy(internal_rate_.begin(), internal_rate_.end(), rate + kInternalOffset);
   }
 
  private:
@@ -125,7 +125,16 @@ class PointRates {
   std::vector<double> internal_rate_;
 };
 
-/// Classical RK4 over `substeps` equal sub-steps of [time, time + step].
+/// Classical RK4 over `substeps` equal sub-steps of [time, time + step]: the sub-stepping of the
+/// step's stress update (rk4_substeps, materials/overstress_integrator.hpp) on the driver's rates.
+///
+/// The driver does not call OverstressIntegrator itself, on purpose: the SPH step integrates
+/// sigma' = R - D : eps_dot^vp with R a constant over the interval, D condensed onto the carried
+/// components and the stress-free ones at zero. Here the prescribed rates are functions of time
+/// (read at every RK stage), the stress-controlled components are solved for at every evaluation,
+/// so that they may be held at a non-zero stress (the confining stress of a triaxial test), and
+/// the total strain is integrated along with the stress. Neither the exactly-elastic shortcut nor
+/// the tension cut-off (docs/theory.md §1.7) applies: the material tests probe the flow itself.
 class Rk4Integrator {
  public:
   explicit Rk4Integrator(std::size_t size)
@@ -133,26 +142,15 @@ class Rk4Integrator {
 
   void advance(PointRates& rates, double time, double step, int substeps,
                std::vector<double>& state) {
-    const double sub_step = step / substeps;
-    for (int n = 0; n < substeps; ++n) {
-      const double start = time + n * sub_step;
-      rates.evaluate(start, state, k1_, true);
-      shifted(state, k1_, 0.5 * sub_step);
-      rates.evaluate(start + 0.5 * sub_step, stage_, k2_, true);
-      shifted(state, k2_, 0.5 * sub_step);
-      rates.evaluate(start + 0.5 * sub_step, stage_, k3_, true);
-      shifted(state, k3_, sub_step);
-      rates.evaluate(start + sub_step, stage_, k4_, true);
-      for (std::size_t i = 0; i < state.size(); ++i)
-        state[i] += sub_step / 6.0 * (k1_[i] + 2.0 * k2_[i] + 2.0 * k3_[i] + k4_[i]);
-    }
+    double* const k[4] = {k1_.data(), k2_.data(), k3_.data(), k4_.data()};
+    auto slope = [&rates](double t, const double* y, double* rate) {
+      rates.evaluate(t, y, rate, true);
+    };
+    rk4_substeps(slope, time, step, substeps, static_cast<int>(state.size()), state.data(),
+                 stage_.data(), k);
   }
 
  private:
-  void shifted(const std::vector<double>& state, const std::vector<double>& rate, double step) {
-    for (std::size_t i = 0; i < state.size(); ++i)
-      stage_[i] = state[i] + step * rate[i];
-  }
   std::vector<double> stage_, k1_, k2_, k3_, k4_;
 };
 
@@ -171,15 +169,13 @@ int choose_substeps(const Material& material, PointRates& rates, double time, do
   const auto internal_of = [](const std::vector<double>& y) {
     return std::span<const double>(y.data() + kInternalOffset, y.size() - kInternalOffset);
   };
-  rates.evaluate(time, state, elastic_rate, false);
+  rates.evaluate(time, state.data(), elastic_rate.data(), false);
   for (std::size_t i = 0; i < state.size(); ++i)
     predictor[i] = state[i] + step * elastic_rate[i];
   const double stiffness =
       std::max(material.source_stiffness(stress_of(state), internal_of(state)),
                material.source_stiffness(stress_of(predictor), internal_of(predictor)));
-  const double wanted = std::ceil(step * stiffness / options.substep_factor);
-  if (!(wanted < options.max_substeps)) return options.max_substeps;
-  return std::max(1, static_cast<int>(wanted));
+  return substep_count(step, stiffness, options.substep_factor, options.max_substeps);
 }
 
 PointState to_point_state(double time, const std::vector<double>& state, int substeps) {

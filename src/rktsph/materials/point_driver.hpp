@@ -4,7 +4,9 @@
 //   stress_rate = D^e : (strain_rate - eps_vp_rate(stress, internal)),  internal_rate = rates,
 //
 // integrated with classical RK4 over sub-steps chosen by the rule of docs/theory.md eq. 2.7,
-// m = max(1, ceil(dt * source_stiffness / substep_factor)), capped at max_substeps.
+// m = max(1, ceil(dt * source_stiffness / substep_factor)), capped at max_substeps: the rule and
+// the RK4 sub-steps of the SPH step's stress update (materials/overstress_integrator.hpp), on rates
+// of its own (point_driver.cpp says why it does not call that integrator).
 // Used by the material tests and by validation of constitutive behaviour without SPH.
 #pragma once
 

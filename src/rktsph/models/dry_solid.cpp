@@ -8,7 +8,7 @@
 namespace rktsph {
 
 namespace {
-constexpr int kMaxInternal = 8;
+constexpr int kMaxInternal = OverstressIntegrator::kMaxInternal;
 constexpr int kMaxNormals = SurfaceNormals::kMax;
 
 // Solves the count x count system a x = b (count <= 3) by Cramer's rule.
@@ -67,11 +67,12 @@ DrySolid::DrySolid(Kinematics kinematics, std::vector<std::unique_ptr<Material>>
     }
   }
   const int d = dimension();
+  carried_.count = layout_.stress_count();
   for (int c = 0; c < layout_.stress_count(); ++c) {
     const auto k = static_cast<std::size_t>(c);
     const TensorComponent component = assumption.stress_component(c);
-    stress_slot_[k] = assumption.stress_slot(c);
-    shear_factor_[k] = component.i == component.j ? 1.0 : 2.0;
+    carried_.slot[k] = assumption.stress_slot(c);
+    carried_.shear_factor[k] = component.i == component.j ? 1.0 : 2.0;
     const StrainRateTerms terms = assumption.strain_rate_terms(c);
     strain_rate_gradients_[k].count = terms.count;
     for (int t = 0; t < terms.count; ++t) {
@@ -86,6 +87,16 @@ DrySolid::DrySolid(Kinematics kinematics, std::vector<std::unique_ptr<Material>>
     for (int b = 0; b < d; ++b)
       divergence_gradients_[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] =
           layout_.gradient(layout_.stress(a, b), b);
+  // The integrators take D as a plain table: StiffnessMatrix belongs to physics/, above
+  // materials/.
+  integrators_.reserve(materials_.size());
+  for (std::size_t m = 0; m < materials_.size(); ++m) {
+    CondensedStiffness stiffness{};
+    for (int r = 0; r < carried_.count; ++r)
+      for (int c = 0; c < carried_.count; ++c)
+        stiffness[static_cast<std::size_t>(r * CarriedStress::kMax + c)] = stiffness_[m](r, c);
+    integrators_.emplace_back(*materials_[m], carried_, stiffness, integration_);
+  }
 }
 
 double DrySolid::wave_speed(std::int32_t material) const {
@@ -223,8 +234,7 @@ void DrySolid::advance_velocities(std::int64_t n, const FieldArray& rate, double
   const int d = dimension();
   const double stiffness = loads_.damping_at(time);
   const int substeps =
-      std::clamp(static_cast<int>(std::ceil(interval * stiffness / integration_.substep_factor)), 1,
-                 integration_.max_substeps);
+      substep_count(interval, stiffness, integration_.substep_factor, integration_.max_substeps);
   const double delta = interval / substeps;
   const bool frozen = integration_.frozen_flux;
   std::vector<SubstepLoads>& loads = substep_loads_;
@@ -259,126 +269,6 @@ void DrySolid::advance_velocities(std::int64_t n, const FieldArray& rate, double
   }
 }
 
-void DrySolid::stress_source(const Material& material, const StiffnessMatrix& stiffness,
-                             const double* sigma, const double* kappa, double* sigma_rate,
-                             double* kappa_rate) const {
-  const int ns = layout_.stress_count();
-  SymmetricTensor stress{};
-  for (int c = 0; c < ns; ++c)
-    stress[static_cast<std::size_t>(stress_slot_[static_cast<std::size_t>(c)])] = sigma[c];
-  SymmetricTensor strain_rate{};
-  const int nk = material.internal_count();
-  material.viscoplastic_rate(stress, std::span<const double>(kappa, nk), strain_rate,
-                             std::span<double>(kappa_rate, nk));
-  // The strains of the stress-free components are condensed into the stiffness, so only the
-  // carried components of eps_dot^vp enter (engineering shear).
-  double plastic[kMaxStress];
-  for (int c = 0; c < ns; ++c) {
-    const auto k = static_cast<std::size_t>(c);
-    plastic[c] = shear_factor_[k] * strain_rate[static_cast<std::size_t>(stress_slot_[k])];
-  }
-  double relaxation[kMaxStress] = {};
-  stiffness.multiply(plastic, relaxation);
-  for (int c = 0; c < ns; ++c)
-    sigma_rate[c] = -relaxation[c];
-}
-
-void DrySolid::advance_stress(const Material& material, const StiffnessMatrix& stiffness,
-                              const double* rate_sigma, double time, double interval, double* sigma,
-                              double* kappa) const {
-  integrate_stress(material, stiffness, rate_sigma, time, interval, sigma, kappa);
-  cut_tension(material.tension_cutoff(), sigma);
-}
-
-void DrySolid::cut_tension(double limit, double* sigma) const {
-  if (!std::isfinite(limit)) return;
-  // p = tr(sigma)/3 over the full tensor; the stress-free normal components are zero.
-  double trace = 0.0;
-  int normals = 0;
-  const int ns = layout_.stress_count();
-  for (int c = 0; c < ns; ++c)
-    if (stress_slot_[static_cast<std::size_t>(c)] < 3) {
-      trace += sigma[c];
-      ++normals;
-    }
-  const double excess = trace / 3.0 - limit;
-  if (!(excess > 0.0) || normals == 0) return;
-  // Shifting the carried normal components alike lowers p by exactly the excess (eq. 1.7).
-  const double shift = 3.0 * excess / normals;
-  for (int c = 0; c < ns; ++c)
-    if (stress_slot_[static_cast<std::size_t>(c)] < 3) sigma[c] -= shift;
-}
-
-void DrySolid::integrate_stress(const Material& material, const StiffnessMatrix& stiffness,
-                                const double* rate_sigma, double time, double interval,
-                                double* sigma, double* kappa) const {
-  (void)time;  // the stress source is autonomous; kept for models with time-dependent sources
-  const int ns = layout_.stress_count();
-  if (material.is_elastic()) {
-    for (int k = 0; k < ns; ++k)
-      sigma[k] += interval * rate_sigma[k];
-    return;
-  }
-  // (sigma, kappa)' = R_sigma - D^e : eps_dot^vp, kappa_dot: RK4 with sub-steps sized by the
-  // relaxation rate of the source (docs/theory.md §2.1, sub-step rule).
-  const int nk = material.internal_count();
-  SymmetricTensor stress{}, predictor{};
-  for (int c = 0; c < ns; ++c) {
-    const auto slot = static_cast<std::size_t>(stress_slot_[static_cast<std::size_t>(c)]);
-    stress[slot] = sigma[c];
-    predictor[slot] = sigma[c] + interval * rate_sigma[c];
-  }
-  // Both ends of the straight path sigma + t R inside the (convex) elastic domain: no flow at all
-  // within the step, so the update is exactly elastic.
-  const std::span<const double> kappa_view(kappa, static_cast<std::size_t>(nk));
-  if (integration_.frozen_flux && !material.flows(stress, kappa_view) &&
-      !material.flows(predictor, kappa_view)) {
-    for (int c = 0; c < ns; ++c)
-      sigma[c] += interval * rate_sigma[c];
-    return;
-  }
-  // The source may switch on within the step (an elastic state pushed beyond the yield surface by
-  // the flux): size the sub-steps by the larger stiffness of the start and of the elastic
-  // predictor.
-  const double relaxation_rate = std::max(material.source_stiffness(stress, kappa_view),
-                                          material.source_stiffness(predictor, kappa_view));
-  const int substeps = std::clamp(
-      static_cast<int>(std::ceil(interval * relaxation_rate / integration_.substep_factor)), 1,
-      integration_.max_substeps);
-  const double delta = interval / substeps;
-  const int n = ns + nk;
-  double y[kMaxStress + kMaxInternal], stage[kMaxStress + kMaxInternal];
-  double k[4][kMaxStress + kMaxInternal];
-  const bool frozen = integration_.frozen_flux;
-  auto evaluate = [&](const double* state, double* slope) {
-    stress_source(material, stiffness, state, state + ns, slope, slope + ns);
-    if (frozen)
-      for (int c = 0; c < ns; ++c)
-        slope[c] += rate_sigma[c];
-  };
-  std::copy(sigma, sigma + ns, y);
-  std::copy(kappa, kappa + nk, y + ns);
-  for (int s = 0; s < substeps; ++s) {
-    evaluate(y, k[0]);
-    for (int c = 0; c < n; ++c)
-      stage[c] = y[c] + 0.5 * delta * k[0][c];
-    evaluate(stage, k[1]);
-    for (int c = 0; c < n; ++c)
-      stage[c] = y[c] + 0.5 * delta * k[1][c];
-    evaluate(stage, k[2]);
-    for (int c = 0; c < n; ++c)
-      stage[c] = y[c] + delta * k[2][c];
-    evaluate(stage, k[3]);
-    for (int c = 0; c < n; ++c)
-      y[c] += delta / 6.0 * (k[0][c] + 2.0 * k[1][c] + 2.0 * k[2][c] + k[3][c]);
-  }
-  if (!frozen)
-    for (int c = 0; c < ns; ++c)
-      y[c] += interval * rate_sigma[c];
-  std::copy(y, y + ns, sigma);
-  std::copy(y + ns, y + n, kappa);
-}
-
 void DrySolid::advance(std::span<const std::int32_t> material, const FieldArray& rate, double time,
                        double interval, FieldArray& values, FieldArray& internal,
                        AdvancedFields part) const {
@@ -398,8 +288,7 @@ void DrySolid::advance(std::span<const std::int32_t> material, const FieldArray&
     }
     for (int c = 0; c < nk; ++c)
       kappa[c] = internal.field(c)[i];
-    advance_stress(*materials_[material_index], stiffness_[material_index], rate_sigma, time,
-                   interval, sigma, kappa);
+    integrators_[material_index].advance(rate_sigma, interval, sigma, kappa);
     for (int c = 0; c < ns; ++c)
       values.field(layout_.stress_component(c))[i] = sigma[c];
     for (int c = 0; c < nk; ++c)
@@ -412,7 +301,7 @@ void DrySolid::normal_strain(const std::array<double, 3>& normal, double* strain
   // n . sigma . n is the plain dot product of this strain with the carried stresses.
   for (int c = 0; c < layout_.stress_count(); ++c) {
     const TensorComponent component = layout_.kinematics().stress_component(c);
-    strain[c] = shear_factor_[static_cast<std::size_t>(c)] *
+    strain[c] = carried_.shear_factor[static_cast<std::size_t>(c)] *
                 normal[static_cast<std::size_t>(component.i)] *
                 normal[static_cast<std::size_t>(component.j)];
   }
@@ -473,7 +362,7 @@ void DrySolid::add_artificial_viscosity(std::span<const std::int32_t> material,
     strain_rate(gradient, i, strain);
     for (int k = 0; k < ns; ++k)
       values.field(layout_.stress_component(k))[i] +=
-          viscosity * (strain[k] / shear_factor_[static_cast<std::size_t>(k)]);
+          viscosity * (strain[k] / carried_.shear_factor[static_cast<std::size_t>(k)]);
   }
 }
 

@@ -11,6 +11,7 @@
 
 #include "rktsph/case/case_description.hpp"
 #include "rktsph/materials/material.hpp"
+#include "rktsph/materials/overstress_integrator.hpp"
 #include "rktsph/physics/field_layout.hpp"
 #include "rktsph/physics/kinematics/kinematics.hpp"
 #include "rktsph/physics/physics_model.hpp"
@@ -27,18 +28,6 @@ struct Loads {
 
   Vec3 body_force(double t) const;
   double damping_at(double t) const;
-};
-
-struct SourceIntegration {
-  // m = ceil(interval * stiffness / factor). 0.5 rather than the 2.5 of eq. 2.7: with larger steps
-  // the RK4 stages jump across the yield surface (the Macaulay switch) and the overstress
-  // undershoots (15 % per sub-step at lambda delta = 2.3, docs/theory.md §2.1).
-  double substep_factor = 0.5;
-  int max_substeps = 1000;
-  /// true: y' = R + S(y) with R frozen (docs/theory.md §2.8); false: the additive split,
-  /// y = y0 + interval R + [integral of y' = S(y) from y0] (biased by xi dt/2 with damping,
-  /// eq. 2.6).
-  bool frozen_flux = true;
 };
 
 class DrySolid : public PhysicsModel {
@@ -120,19 +109,6 @@ class DrySolid : public PhysicsModel {
   /// The velocity part of advance(), points [0, n) of `values`.
   void advance_velocities(std::int64_t n, const FieldArray& rate, double time, double interval,
                           FieldArray& values) const;
-  void advance_stress(const Material& material, const StiffnessMatrix& stiffness,
-                      const double* rate_sigma, double time, double interval, double* sigma,
-                      double* kappa) const;
-  // The sub-stepped update of advance_stress, before the tension cut-off.
-  void integrate_stress(const Material& material, const StiffnessMatrix& stiffness,
-                        const double* rate_sigma, double time, double interval, double* sigma,
-                        double* kappa) const;
-  // Returns a mean stress above the material's tension cut-off onto it (docs/theory.md §1.7).
-  void cut_tension(double limit, double* sigma) const;
-  // Stress source -D^e : eps_dot^vp in the carried components.
-  void stress_source(const Material& material, const StiffnessMatrix& stiffness,
-                     const double* sigma, const double* kappa, double* sigma_rate,
-                     double* kappa_rate) const;
   // n (x) n as an engineering strain on the carried components.
   void normal_strain(const std::array<double, 3>& normal, double* strain) const;
   // Engineering strain rate of every carried component at point i (docs/theory.md eq. 1.4).
@@ -153,9 +129,12 @@ class DrySolid : public PhysicsModel {
   int internal_count_ = 0;
   std::vector<StiffnessMatrix> stiffness_;   // of each material
   std::vector<StiffnessMatrix> compliance_;  // its inverse
+  // The stress update of each material (the source, its sub-steps and the tension cut-off): the
+  // material integrates its own stress, the model only gathers and scatters the fields.
+  std::vector<OverstressIntegrator> integrators_;
   // Tables of the kinematics, read once so that the point loops only index arrays.
-  std::array<int, kMaxStress> stress_slot_{};      // SymmetricTensor slot of each component
-  std::array<double, kMaxStress> shear_factor_{};  // 2 off the diagonal: gamma = 2 eps
+  // The SymmetricTensor slot and the shear factor (gamma = 2 eps) of each carried component.
+  CarriedStress carried_;
   std::array<StrainRateGradients, kMaxStress> strain_rate_gradients_{};
   std::array<std::array<int, 3>, 3> divergence_gradients_{};  // d sigma_ab / dx_b of axis a
 };

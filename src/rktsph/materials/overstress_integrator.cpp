@@ -1,0 +1,120 @@
+#include "rktsph/materials/overstress_integrator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rktsph {
+
+namespace {
+constexpr int kMaxStress = CarriedStress::kMax;
+constexpr int kMaxInternal = OverstressIntegrator::kMaxInternal;
+}  // namespace
+
+OverstressIntegrator::OverstressIntegrator(const Material& material, const CarriedStress& carried,
+                                           const CondensedStiffness& stiffness,
+                                           SourceIntegration integration)
+    : material_(material), carried_(carried), stiffness_(stiffness), integration_(integration) {}
+
+void OverstressIntegrator::source(const double* sigma, const double* kappa, double* sigma_rate,
+                                  double* kappa_rate) const {
+  const int ns = carried_.count;
+  SymmetricTensor stress{};
+  for (int c = 0; c < ns; ++c)
+    stress[static_cast<std::size_t>(carried_.slot[static_cast<std::size_t>(c)])] = sigma[c];
+  SymmetricTensor strain_rate{};
+  const int nk = material_.internal_count();
+  material_.viscoplastic_rate(stress, std::span<const double>(kappa, nk), strain_rate,
+                              std::span<double>(kappa_rate, nk));
+  // The strains of the stress-free components are condensed into the stiffness, so only the
+  // carried components of eps_dot^vp enter (engineering shear, docs/theory.md §1.6).
+  double plastic[kMaxStress];
+  for (int c = 0; c < ns; ++c) {
+    const auto k = static_cast<std::size_t>(c);
+    plastic[c] = carried_.shear_factor[k] * strain_rate[static_cast<std::size_t>(carried_.slot[k])];
+  }
+  // -D plastic, each row summed in component order.
+  for (int r = 0; r < ns; ++r) {
+    const double* row = stiffness_.data() + static_cast<std::size_t>(r) * kMaxStress;
+    double sum = row[0] * plastic[0];
+    for (int c = 1; c < ns; ++c)
+      sum += row[c] * plastic[c];
+    sigma_rate[r] = -sum;
+  }
+}
+
+void OverstressIntegrator::cut_tension(double* sigma) const {
+  const double limit = material_.tension_cutoff();
+  if (!std::isfinite(limit)) return;
+  // p = tr(sigma)/3 over the full tensor; the stress-free normal components are zero.
+  double trace = 0.0;
+  int normals = 0;
+  const int ns = carried_.count;
+  for (int c = 0; c < ns; ++c)
+    if (carried_.slot[static_cast<std::size_t>(c)] < 3) {
+      trace += sigma[c];
+      ++normals;
+    }
+  const double excess = trace / 3.0 - limit;
+  if (!(excess > 0.0) || normals == 0) return;
+  // Shifting the carried normal components alike lowers p by exactly the excess (eq. 1.7).
+  const double shift = 3.0 * excess / normals;
+  for (int c = 0; c < ns; ++c)
+    if (carried_.slot[static_cast<std::size_t>(c)] < 3) sigma[c] -= shift;
+}
+
+void OverstressIntegrator::integrate(const double* rate_sigma, double interval, double* sigma,
+                                     double* kappa) const {
+  const int ns = carried_.count;
+  if (material_.is_elastic()) {
+    for (int k = 0; k < ns; ++k)
+      sigma[k] += interval * rate_sigma[k];
+    return;
+  }
+  // (sigma, kappa)' = R_sigma - D^e : eps_dot^vp, kappa_dot: RK4 with sub-steps sized by the
+  // relaxation rate of the source (docs/theory.md §2.1, sub-step rule).
+  const int nk = material_.internal_count();
+  SymmetricTensor stress{}, predictor{};
+  for (int c = 0; c < ns; ++c) {
+    const auto slot = static_cast<std::size_t>(carried_.slot[static_cast<std::size_t>(c)]);
+    stress[slot] = sigma[c];
+    predictor[slot] = sigma[c] + interval * rate_sigma[c];
+  }
+  // Both ends of the straight path sigma + t R inside the (convex) elastic domain: no flow at all
+  // within the step, so the update is exactly elastic.
+  const std::span<const double> kappa_view(kappa, static_cast<std::size_t>(nk));
+  if (integration_.frozen_flux && !material_.flows(stress, kappa_view) &&
+      !material_.flows(predictor, kappa_view)) {
+    for (int c = 0; c < ns; ++c)
+      sigma[c] += interval * rate_sigma[c];
+    return;
+  }
+  // The source may switch on within the step (an elastic state pushed beyond the yield surface by
+  // the flux): size the sub-steps by the larger stiffness of the start and of the elastic
+  // predictor.
+  const double relaxation_rate = std::max(material_.source_stiffness(stress, kappa_view),
+                                          material_.source_stiffness(predictor, kappa_view));
+  const int substeps = substep_count(interval, relaxation_rate, integration_.substep_factor,
+                                     integration_.max_substeps);
+  const int n = ns + nk;
+  double y[kMaxStress + kMaxInternal], stage[kMaxStress + kMaxInternal];
+  double k[4][kMaxStress + kMaxInternal];
+  double* const slopes[4] = {k[0], k[1], k[2], k[3]};
+  const bool frozen = integration_.frozen_flux;
+  // The source is autonomous: the stage times of rk4_substeps are not needed.
+  auto evaluate = [&](double, const double* state, double* slope) {
+    source(state, state + ns, slope, slope + ns);
+    if (frozen)
+      for (int c = 0; c < ns; ++c)
+        slope[c] += rate_sigma[c];
+  };
+  std::copy(sigma, sigma + ns, y);
+  std::copy(kappa, kappa + nk, y + ns);
+  rk4_substeps(evaluate, 0.0, interval, substeps, n, y, stage, slopes);
+  if (!frozen)
+    for (int c = 0; c < ns; ++c)
+      y[c] += interval * rate_sigma[c];
+  std::copy(y, y + ns, sigma);
+  std::copy(y + ns, y + n, kappa);
+}
+
+}  // namespace rktsph
