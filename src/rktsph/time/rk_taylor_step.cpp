@@ -21,6 +21,7 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
       options_(options),
       builder_(std::move(builder)),
       policy_(policy),
+      configuration_(make_configuration_policy(policy, model, reference)),
       conditions_(conditions) {
   const int nf = model.field_count();
   const int nk = model.internal_count();
@@ -42,8 +43,6 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
     // search does, so that a restart searching from the configuration of the last search gets
     // these stencils and tables bit for bit.
     search_neighbours(configuration);
-    motion_.emplace(reference);
-    predicted_nodes_ = reference.sph_nodes;
   }
   // Before the step's arrays are allocated: the scratch of what it derives from the tables then
   // never adds up with them (§4.7).
@@ -167,7 +166,7 @@ void RkTaylorStep::bind_operators(const Configuration& configuration) {
 }
 
 void RkTaylorStep::rebuild_operators(const Configuration& configuration) {
-  if (!motion_) {  // a fixed configuration: everything again, as at the start
+  if (policy_ == OperatorPolicy::ReferenceConfiguration) {  // everything again, as at the start
     builder_.build(configuration, operators_);
     builder_.release_buffers(operators_);
     bind_operators(configuration);
@@ -258,106 +257,13 @@ void RkTaylorStep::advance(State& state, double dt) {
   add_half_step_displacement(state, dt);  // the v^{n+1} half of the trapezoidal rule
   state.time += dt;
   ++state.step;
-  if (motion_) {
+  if (configuration_->motion()) {  // the points move: timed as the surface's share (§9.5)
     lap(clock);
-    move_configuration(state);
+    configuration_->after_step(state);
     surface_seconds_ += lap(clock);
   }
   advance_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-void RkTaylorStep::move_configuration(State& state) {
-  motion_->move(state.displacement, state.configuration);
-  if (moving_surface_) moving_surface_->follow_configuration(state.configuration.sph_nodes);
-  const CellQuality& quality = motion_->quality();
-  if (quality.inverted_cells > 0)
-    throw RunError(fmt::format(
-        "{} cell(s) of the moving configuration folded over at step {} (t = {:.6g} s), first the "
-        "cell of the stress point at {}: its nodes have crossed and its area is no longer "
-        "positive, so the cell has no volume to integrate (docs/theory.md §9.1); reduce the time "
-        "step or refine the lattice",
-        quality.inverted_cells, state.step, state.time,
-        describe_point(state.configuration.stress_points,
-                       static_cast<std::size_t>(quality.first_inverted_cell))));
-}
-
-void RkTaylorStep::to_midpoint_configuration(FieldArray& gradient, int fields,
-                                             std::span<const int> velocity_gradient, double dt,
-                                             std::size_t count) const {
-  const int d = model_.dimension();
-  const auto n = static_cast<std::int64_t>(count);
-#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
-  for (std::int64_t i = 0; i < n; ++i) {
-    // F = I + (dt/2) G and its inverse (d <= 2: the model's dimensions).
-    double f[2][2] = {{1.0, 0.0}, {0.0, 1.0}};
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c)
-        f[a][c] += 0.5 * dt * gradient(velocity_gradient[static_cast<std::size_t>(a * d + c)], i);
-    double inverse[2][2];
-    if (d == 1) {
-      inverse[0][0] = 1.0 / f[0][0];
-    } else {
-      const double det = f[0][0] * f[1][1] - f[0][1] * f[1][0];
-      inverse[0][0] = f[1][1] / det;
-      inverse[0][1] = -f[0][1] / det;
-      inverse[1][0] = -f[1][0] / det;
-      inverse[1][1] = f[0][0] / det;
-    }
-    for (int field = 0; field < fields; ++field) {
-      double row[2] = {0.0, 0.0};
-      for (int c = 0; c < d; ++c)
-        for (int k = 0; k < d; ++k)
-          row[c] += gradient(field * d + k, i) * inverse[k][c];
-      for (int c = 0; c < d; ++c)
-        gradient(field * d + c, i) = row[c];
-    }
-  }
-}
-
-void RkTaylorStep::rotate_hourglass_forces(FieldArray& force, double dt) const {
-  // The generalised force k q of a cell is a vector of the current axes: it turns with the cell's
-  // spin, as the stress does (eq. 9.2), or a rotated cell would resist hourglass modes along
-  // directions it no longer has.
-  const std::size_t nv = nodes_.stress_points.size();
-  const double* dvx_dy = mean_point_gradient_.field(1);
-  const double* dvy_dx = mean_point_gradient_.field(2);
-  double* fx = force.field(0);
-  double* fy = force.field(1);
-  for (std::size_t p = 0; p < nv; ++p) {
-    const PlaneRotation q = hughes_winget_rotation(0.5 * (dvx_dy[p] - dvy_dx[p]), dt);
-    const double x = fx[p], y = fy[p];
-    fx[p] = q.c * x + q.s * y;
-    fy[p] = -q.s * x + q.c * y;
-  }
-}
-
-void RkTaylorStep::turn_surface(const State& state, double dt) {
-  // The faces' normals at X + u + (dt/2) v (docs/theory.md §9.7): the traction-free condition of
-  // the half-step and of the end of the step then acts on the faces where those values are.
-  if (!moving_surface_) return;
-  const std::size_t ns = nodes_.sph_nodes.size();
-  for (int a = 0; a < model_.dimension(); ++a) {
-    const auto axis = static_cast<std::size_t>(a);
-    const double* u = state.displacement.field(a);
-    const double* v = state.fields.field(model_.velocity_field(a));
-    for (std::size_t i = 0; i < ns; ++i)
-      predicted_nodes_.position[axis][i] =
-          nodes_.sph_nodes.position[axis][i] + u[i] + 0.5 * dt * v[i];
-  }
-  moving_surface_->follow_configuration(predicted_nodes_);
-}
-
-void RkTaylorStep::scale_momentum_rate(FieldArray& rate, std::size_t count,
-                                       const double* current_volume, const double* reference_volume,
-                                       const std::int32_t* row_point) const {
-  for (int a = 0; a < model_.dimension(); ++a) {
-    double* r = rate.field(model_.velocity_field(a));
-    for (std::size_t i = 0; i < count; ++i) {
-      const auto point = row_point ? static_cast<std::size_t>(row_point[i]) : i;
-      r[i] *= current_volume[point] / reference_volume[point];
-    }
-  }
 }
 
 void RkTaylorStep::add_half_step_displacement(State& state, double dt) const {
@@ -383,13 +289,12 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
     parallel_copy(half_step_.field(v), nodes_.stress_points.size(), point_velocity_.field(a));
   }
   model_.flux_rate(nodes_.cells.materials(), point_gradient_, rate_);
-  if (model_.objective_stress_rate()) {  // docs/theory.md eqs. 9.2, 9.3
-    model_.rotate_stress(point_gradient_, velocity_gradient_of_fields_, 0.5 * dt,
-                         nodes_.stress_points.size(), half_step_);
-    scale_momentum_rate(rate_, nodes_.stress_points.size(),
-                        state.configuration.stress_points.volume.data(),
-                        nodes_.stress_points.volume.data(), nullptr);
-  }
+  // On the current configuration (docs/theory.md eqs. 9.2, 9.3).
+  configuration_->rotate_stress(point_gradient_, velocity_gradient_of_fields_, 0.5 * dt,
+                                nodes_.stress_points.size(), half_step_);
+  configuration_->scale_momentum_rate(rate_, nodes_.stress_points.size(),
+                                      state.configuration.stress_points.volume.data(),
+                                      nodes_.stress_points.volume.data(), nullptr);
   model_.advance(nodes_.cells.materials(), rate_, state.time, 0.5 * dt, half_step_,
                  point_internal_);
   if (hourglass_stiffness_.active()) {
@@ -403,7 +308,7 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
 }
 
 void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
-  turn_surface(state, dt);  // to x^n + (dt/2) v^n, where the half-step values are
+  configuration_->turn_faces(state, dt);  // to x^n + (dt/2) v^n, where the half-step values are
   // Step 1b: boundary nodes advance half a step with the collocated gradient; their half-step
   // values join the stress points as sources of step 2 (docs/theory.md §2.2, §7.3).
   const auto& boundary = operators_.boundary_nodes;
@@ -420,13 +325,11 @@ void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
   apply_operator(operators_.boundary_gradient, state.fields, model_.parities(), nullptr,
                  &boundary_gradient_);
   model_.flux_rate(boundary_material_, boundary_gradient_, boundary_rate_);
-  if (model_.objective_stress_rate()) {
-    model_.rotate_stress(boundary_gradient_, velocity_gradient_of_fields_, 0.5 * dt,
-                         boundary.size(), boundary_values_);
-    scale_momentum_rate(boundary_rate_, boundary.size(),
-                        state.configuration.sph_nodes.volume.data(), nodes_.sph_nodes.volume.data(),
-                        boundary.data());
-  }
+  configuration_->rotate_stress(boundary_gradient_, velocity_gradient_of_fields_, 0.5 * dt,
+                                boundary.size(), boundary_values_);
+  configuration_->scale_momentum_rate(boundary_rate_, boundary.size(),
+                                      state.configuration.sph_nodes.volume.data(),
+                                      nodes_.sph_nodes.volume.data(), boundary.data());
   model_.advance(boundary_material_, boundary_rate_, state.time, 0.5 * dt, boundary_values_,
                  boundary_internal_);
   project_free_faces(boundary_start_, boundary_values_, true);
@@ -455,9 +358,9 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   apply_operator(operators_.points_to_nodes, half_step_, model_.parities(), nullptr,
                  &node_gradient_);
   close_incomplete_nodes(state);
-  if (model_.objective_stress_rate())  // the half-step values live on x^{n+1/2} (eq. 9.5)
-    to_midpoint_configuration(node_gradient_, model_.field_count(), velocity_gradient_of_fields_,
-                              dt, ns);
+  // The half-step values live on x^{n+1/2} (eq. 9.5).
+  configuration_->to_midpoint_configuration(node_gradient_, model_.field_count(),
+                                            velocity_gradient_of_fields_, dt, ns);
   if (!mean_update)
     strain_hourglass_stiffness_.integrate_strain(model_, node_gradient_, dt, state.strain);
   model_.flux_rate(nodes_.node_material, node_gradient_, rate_);
@@ -483,16 +386,15 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
     parallel_copy(state.internal.data().data(), state.internal.data().size(),
                   start_internal_.data().data());
   }
-  if (model_.objective_stress_rate()) {
-    if (!mean_update)
-      model_.rotate_stress(node_gradient_, velocity_gradient_of_fields_, dt, ns, state.fields);
-    scale_momentum_rate(rate_, ns, state.configuration.sph_nodes.volume.data(),
-                        nodes_.sph_nodes.volume.data(), nullptr);
-  }
+  if (!mean_update)
+    configuration_->rotate_stress(node_gradient_, velocity_gradient_of_fields_, dt, ns,
+                                  state.fields);
+  configuration_->scale_momentum_rate(rate_, ns, state.configuration.sph_nodes.volume.data(),
+                                      nodes_.sph_nodes.volume.data(), nullptr);
   // With the mean-velocity update only the velocity is advanced here; the rest after it (eq. 2.5).
   model_.advance(nodes_.node_material, rate_, state.time, dt, state.fields, state.internal,
                  mean_update ? AdvancedFields::Velocity : AdvancedFields::All);
-  turn_surface(state, dt);  // to x^{n+1}: u holds u^n + (dt/2) v^n, v is v^{n+1}
+  configuration_->turn_faces(state, dt);  // to x^{n+1}: u holds u^n + (dt/2) v^n, v is v^{n+1}
   project_free_faces(boundary_start_, state.fields, false);
   conditions_.apply(state.time + dt, state.fields);
   if (filter_active_) {
@@ -520,8 +422,8 @@ void RkTaylorStep::finish_with_mean_velocity(State& state, double dt) {
   if (options_.stress_update == StressUpdate::MeanVelocity)
     advance_stress_with_mean_velocity(state, dt);
   if (hourglass_stiffness_.active()) {
-    if (model_.objective_stress_rate() && mean_point_gradient_.field_count() > 0)
-      rotate_hourglass_forces(state.hourglass_force, dt);
+    if (mean_point_gradient_.field_count() > 0)
+      configuration_->rotate_cell_forces(mean_point_gradient_, dt, state.hourglass_force);
     advance_hourglass_force(hourglass_stiffness_, mean_velocity_, {0, 1}, dt, hourglass_factor_,
                             state.hourglass_force, state.hourglass_force);
   }
@@ -540,11 +442,11 @@ void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
   parallel_fill(mean_node_gradient_.data().data(), mean_node_gradient_.data().size(), 0.0);
   add_adjoint_interpolation(node_average_, mean_point_gradient_, velocity_gradient_parities_,
                             every_gradient_, mean_node_gradient_);
-  if (model_.objective_stress_rate()) {  // x^{n+1} = x^n + dt v_bar: on x^{n+1/2} (eq. 9.5)
-    to_midpoint_configuration(mean_node_gradient_, d, velocity_gradient_of_velocity_, dt, ns);
-    to_midpoint_configuration(mean_point_gradient_, d, velocity_gradient_of_velocity_, dt,
-                              nodes_.stress_points.size());  // the cells' spin
-  }
+  // x^{n+1} = x^n + dt v_bar: on x^{n+1/2} (eq. 9.5); the stress points' for the cells' spin.
+  configuration_->to_midpoint_configuration(mean_node_gradient_, d, velocity_gradient_of_velocity_,
+                                            dt, ns);
+  configuration_->to_midpoint_configuration(mean_point_gradient_, d, velocity_gradient_of_velocity_,
+                                            dt, nodes_.stress_points.size());
   for (int a = 0; a < d; ++a)
     for (int c = 0; c < d; ++c)
       parallel_copy(mean_node_gradient_.field(a * d + c), ns,
@@ -557,8 +459,9 @@ void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
                 state.internal.data().data());
   strain_hourglass_stiffness_.integrate_strain(model_, node_gradient_, dt, state.strain);
   model_.flux_rate(nodes_.node_material, node_gradient_, rate_);
-  if (model_.objective_stress_rate())  // with the spin of the mean velocity (eq. 9.2)
-    model_.rotate_stress(mean_node_gradient_, velocity_gradient_of_velocity_, dt, ns, state.fields);
+  // With the spin of the mean velocity (eq. 9.2).
+  configuration_->rotate_stress(mean_node_gradient_, velocity_gradient_of_velocity_, dt, ns,
+                                state.fields);
   model_.advance(nodes_.node_material, rate_, state.time, dt, state.fields, state.internal,
                  AdvancedFields::Others);
   project_free_faces(boundary_start_, state.fields, false);

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -30,6 +31,7 @@
 #include "rktsph/sph/operators.hpp"
 #include "rktsph/stabilisation/hourglass_stiffness.hpp"
 #include "rktsph/stabilisation/strain_hourglass_stiffness.hpp"
+#include "rktsph/time/configuration_policy.hpp"
 #include "rktsph/time/step_operators.hpp"
 
 namespace rktsph {
@@ -77,7 +79,9 @@ class RkTaylorStep {
   void set_projection(StepProjection* projection) { projection_ = projection; }
   /// The conditions whose faces follow the moving configuration (policy CurrentConfiguration):
   /// the same object as the step's conditions, which it turns after every move.
-  void set_moving_surface(BoundaryConditions* conditions) { moving_surface_ = conditions; }
+  void set_moving_surface(BoundaryConditions* conditions) {
+    configuration_->follow_faces(conditions);
+  }
   /// Where the wall time of every advance so far went (docs/theory.md §9.5).
   StepTimeSplit time_split() const;
   /// How many times the stencils were searched and the filter's tables built on a moving
@@ -88,7 +92,7 @@ class RkTaylorStep {
   void save_checkpoint(CheckpointOut& out) const;
   void restore_checkpoint(CheckpointIn& in);
   /// The motion of the configuration (policy CurrentConfiguration), or null.
-  const ConfigurationMotion* motion() const { return motion_ ? &*motion_ : nullptr; }
+  const ConfigurationMotion* motion() const { return configuration_->motion(); }
   /// Applies the hourglass filter of step 3 alone (docs/theory.md eq. 3.1); no-op when it is off.
   void filter_hourglass(FieldArray& fields) { filter_hourglass(fields, FilterPart::All); }
 
@@ -110,22 +114,6 @@ class RkTaylorStep {
   void finish_with_mean_velocity(State& state, double dt);
   enum class FilterPart { All, Velocity, OtherFields };
   void filter_hourglass(FieldArray& fields, FilterPart part);
-  /// Multiplies the velocity rates of rows [0, count) by V / V_0 of their point: the momentum
-  /// balance with the current density rho_0 V_0 / V (docs/theory.md eq. 9.3).
-  void scale_momentum_rate(FieldArray& rate, std::size_t count, const double* current_volume,
-                           const double* reference_volume, const std::int32_t* row_point) const;
-  /// Turns gradients taken on x^n of fields centred at t + dt/2 into gradients on the mid-step
-  /// configuration x^n + (dt/2) v: g <- g F^-1, F = I + (dt/2) grad v (docs/theory.md eq. 9.5).
-  /// `gradient` holds `fields` fields (field f along axis c at f * d + c) of `count` points.
-  void to_midpoint_configuration(FieldArray& gradient, int fields,
-                                 std::span<const int> velocity_gradient, double dt,
-                                 std::size_t count) const;
-  /// Turns the moving faces to the nodes at X + u + (dt/2) v of `state` (docs/theory.md §9.7).
-  void turn_surface(const State& state, double dt);
-  /// Turns the cells' hourglass forces with their spin over dt (docs/theory.md eq. 9.2).
-  void rotate_hourglass_forces(FieldArray& force, double dt) const;
-  /// After the step: moves the configuration (policy CurrentConfiguration, docs/theory.md §9.1).
-  void move_configuration(State& state);
 
   const PhysicsModel& model_;
   const NodeSets& nodes_;  // the reference configuration: materials, cells
@@ -133,7 +121,7 @@ class RkTaylorStep {
   StepOperatorBuilder builder_;
   OperatorPolicy policy_;
   StepOperators operators_;
-  std::optional<ConfigurationMotion> motion_;  // with the policy CurrentConfiguration
+  std::unique_ptr<ConfigurationPolicy> configuration_;  // how the points move, if they do
   // The time split (docs/theory.md §9.5): every advance, its rebuilds, the rebuilds' cell lists,
   // its moves [s].
   double advance_seconds_ = 0.0;
@@ -151,8 +139,6 @@ class RkTaylorStep {
   double viscosity_length_ = 0.0;  // alpha * dx of the artificial viscosity (0 = off)
   const BoundaryConditions& conditions_;
   StepProjection* projection_ = nullptr;
-  BoundaryConditions* moving_surface_ = nullptr;
-  PointCloud predicted_nodes_;              // where turn_surface puts the nodes
   HourglassStiffness hourglass_stiffness_;  // docs/theory.md §3.4
   StrainHourglassStiffness strain_hourglass_stiffness_;
   std::vector<std::int32_t> boundary_material_;

@@ -1,0 +1,122 @@
+#include "rktsph/time/configuration_policy.hpp"
+
+#include <fmt/format.h>
+
+#include "rktsph/core/error.hpp"
+#include "rktsph/core/parallel.hpp"
+#include "rktsph/physics/kinematics/objective_rate.hpp"
+
+namespace rktsph {
+
+MovingConfiguration::MovingConfiguration(const PhysicsModel& model, const NodeSets& reference)
+    : model_(model), reference_(reference), motion_(reference), predicted_nodes_(reference.sph_nodes) {}
+
+void MovingConfiguration::rotate_stress(const FieldArray& gradient,
+                                        std::span<const int> velocity_gradient, double interval,
+                                        std::size_t count, FieldArray& values) const {
+  model_.rotate_stress(gradient, velocity_gradient, interval, count, values);  // eq. 9.2
+}
+
+void MovingConfiguration::scale_momentum_rate(FieldArray& rate, std::size_t count,
+                                       const double* current_volume, const double* reference_volume,
+                                       const std::int32_t* row_point) const {
+  for (int a = 0; a < model_.dimension(); ++a) {
+    double* r = rate.field(model_.velocity_field(a));
+    for (std::size_t i = 0; i < count; ++i) {
+      const auto point = row_point ? static_cast<std::size_t>(row_point[i]) : i;
+      r[i] *= current_volume[point] / reference_volume[point];
+    }
+  }
+}
+
+void MovingConfiguration::to_midpoint_configuration(FieldArray& gradient, int fields,
+                                             std::span<const int> velocity_gradient, double dt,
+                                             std::size_t count) const {
+  const int d = model_.dimension();
+  const auto n = static_cast<std::int64_t>(count);
+#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
+  for (std::int64_t i = 0; i < n; ++i) {
+    // F = I + (dt/2) G and its inverse (d <= 2: the model's dimensions).
+    double f[2][2] = {{1.0, 0.0}, {0.0, 1.0}};
+    for (int a = 0; a < d; ++a)
+      for (int c = 0; c < d; ++c)
+        f[a][c] += 0.5 * dt * gradient(velocity_gradient[static_cast<std::size_t>(a * d + c)], i);
+    double inverse[2][2];
+    if (d == 1) {
+      inverse[0][0] = 1.0 / f[0][0];
+    } else {
+      const double det = f[0][0] * f[1][1] - f[0][1] * f[1][0];
+      inverse[0][0] = f[1][1] / det;
+      inverse[0][1] = -f[0][1] / det;
+      inverse[1][0] = -f[1][0] / det;
+      inverse[1][1] = f[0][0] / det;
+    }
+    for (int field = 0; field < fields; ++field) {
+      double row[2] = {0.0, 0.0};
+      for (int c = 0; c < d; ++c)
+        for (int k = 0; k < d; ++k)
+          row[c] += gradient(field * d + k, i) * inverse[k][c];
+      for (int c = 0; c < d; ++c)
+        gradient(field * d + c, i) = row[c];
+    }
+  }
+}
+
+void MovingConfiguration::rotate_cell_forces(const FieldArray& point_velocity_gradient, double dt,
+                                             FieldArray& force) const {
+  // The generalised force k q of a cell is a vector of the current axes: it turns with the cell's
+  // spin, as the stress does (eq. 9.2), or a rotated cell would resist hourglass modes along
+  // directions it no longer has.
+  const std::size_t nv = reference_.stress_points.size();
+  const double* dvx_dy = point_velocity_gradient.field(1);
+  const double* dvy_dx = point_velocity_gradient.field(2);
+  double* fx = force.field(0);
+  double* fy = force.field(1);
+  for (std::size_t p = 0; p < nv; ++p) {
+    const PlaneRotation q = hughes_winget_rotation(0.5 * (dvx_dy[p] - dvy_dx[p]), dt);
+    const double x = fx[p], y = fy[p];
+    fx[p] = q.c * x + q.s * y;
+    fy[p] = -q.s * x + q.c * y;
+  }
+}
+
+void MovingConfiguration::turn_faces(const State& state, double dt) {
+  // The faces' normals at X + u + (dt/2) v (docs/theory.md §9.7): the traction-free condition of
+  // the half-step and of the end of the step then acts on the faces where those values are.
+  if (!faces_) return;
+  const std::size_t ns = reference_.sph_nodes.size();
+  for (int a = 0; a < model_.dimension(); ++a) {
+    const auto axis = static_cast<std::size_t>(a);
+    const double* u = state.displacement.field(a);
+    const double* v = state.fields.field(model_.velocity_field(a));
+    for (std::size_t i = 0; i < ns; ++i)
+      predicted_nodes_.position[axis][i] =
+          reference_.sph_nodes.position[axis][i] + u[i] + 0.5 * dt * v[i];
+  }
+  faces_->follow_configuration(predicted_nodes_);
+}
+
+void MovingConfiguration::after_step(State& state) {
+  motion_.move(state.displacement, state.configuration);
+  if (faces_) faces_->follow_configuration(state.configuration.sph_nodes);
+  const CellQuality& quality = motion_.quality();
+  if (quality.inverted_cells > 0)
+    throw RunError(fmt::format(
+        "{} cell(s) of the moving configuration folded over at step {} (t = {:.6g} s), first the "
+        "cell of the stress point at {}: its nodes have crossed and its area is no longer "
+        "positive, so the cell has no volume to integrate (docs/theory.md §9.1); reduce the time "
+        "step or refine the lattice",
+        quality.inverted_cells, state.step, state.time,
+        describe_point(state.configuration.stress_points,
+                       static_cast<std::size_t>(quality.first_inverted_cell))));
+}
+
+std::unique_ptr<ConfigurationPolicy> make_configuration_policy(OperatorPolicy policy,
+                                                               const PhysicsModel& model,
+                                                               const NodeSets& reference) {
+  if (policy == OperatorPolicy::CurrentConfiguration)
+    return std::make_unique<MovingConfiguration>(model, reference);
+  return std::make_unique<FixedConfiguration>();
+}
+
+}  // namespace rktsph
