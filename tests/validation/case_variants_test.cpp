@@ -109,6 +109,18 @@ TEST(CaseShape, FootingFromTheSymmetryPlane) {
   EXPECT_THROW(footing_row(description, FootingPlace::SymmetryPlane), RunError);
 }
 
+TEST(CaseShape, WeakZoneOfTheLocalisationCases) {
+  for (const char* folder : {"sample2d-localization", "vpw-localization"}) {
+    CaseDescription description = load_bundled_case(quick_context(), folder);
+    const WeakZone weak = read_weak_zone(description);
+    EXPECT_EQ(weak.centre_x(), 0.05) << folder;
+    EXPECT_EQ(weak.centre_y(), 0.05) << folder;
+    EXPECT_DOUBLE_EQ(weak.half_diagonal(), 0.05 * std::sqrt(2.0)) << folder;
+    description.geometry.shapes.pop_back();
+    EXPECT_THROW(read_weak_zone(description), RunError) << folder;
+  }
+}
+
 TEST(CaseShape, SlopeCutFollowsTheCase) {
   const SlopeCut bundled = read_slope_cut(load_bundled_case(quick_context(), "slope-viscoplastic"));
   EXPECT_EQ(bundled.height, 10.0);

@@ -285,6 +285,14 @@ StripLoad read_strip_load(const CaseDescription& description) {
   return load;
 }
 
+WeakZone read_weak_zone(const CaseDescription& description) {
+  const auto& shapes = description.geometry.shapes;
+  if (shapes.size() != 2 || shapes[1].material == shapes[0].material)
+    throw RunError("case " + description.name +
+                   ": a weak zone, a second shape of its own material, is expected");
+  return {rectangle_shape(description, 1)};
+}
+
 std::vector<double> add_row_probes(CaseDescription& description, const std::string& prefix,
                                    double x_min, double x_max, double y0, double spacing, int rows,
                                    const std::string& field) {

@@ -2,6 +2,7 @@
 // overrides), run it into the validation output folder, and read its probe histories back.
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <span>
@@ -122,6 +123,16 @@ struct StripLoad {
   const TimeFunction* history = nullptr;  // -q(t) on the row, in the description read
 };
 StripLoad read_strip_load(const CaseDescription& description);
+
+/// The weak zone of a localisation case: the second shape, a rectangle of another material than
+/// the first (the later shape wins where they overlap); RunError otherwise.
+struct WeakZone {
+  Rectangle box;
+  double centre_x() const { return 0.5 * (box.x_min + box.x_max); }
+  double centre_y() const { return 0.5 * (box.y_min + box.y_max); }
+  double half_diagonal() const { return 0.5 * std::hypot(box.width(), box.height()); }
+};
+WeakZone read_weak_zone(const CaseDescription& description);
 
 /// The saturated column of the v-pw cases, read back from the case file so that a reference uses
 /// exactly its numbers: the first shape (a rectangle from vertex 0 to vertex 1), the material

@@ -42,24 +42,6 @@ constexpr double kQuickSpacing = 0.05;
 constexpr double kOnsetStrainFraction = 0.1;
 constexpr double kOnsetConcentration = 5.0;
 
-/// The sample of the case: the first shape, and the weak zone, the second shape (a rectangle of
-/// its own material, which wins where the two overlap).
-struct Sample {
-  Rectangle body, weak;
-  double weak_centre_x() const { return 0.5 * (weak.x_min + weak.x_max); }
-  double weak_centre_y() const { return 0.5 * (weak.y_min + weak.y_max); }
-  double weak_half_diagonal() const { return 0.5 * std::hypot(weak.width(), weak.height()); }
-};
-
-Sample sample_of(const CaseDescription& description) {
-  const auto& shapes = description.geometry.shapes;
-  if (shapes.size() != 2 || shapes[1].material == shapes[0].material)
-    throw RunError(
-        "sample2d-localization: the sample and its weak zone, a second shape of its own "
-        "material, are expected");
-  return {rectangle_shape(description, 0), rectangle_shape(description, 1)};
-}
-
 /// Quasi-static time at which the imposed top displacement reaches `displacement` (trapezoidal
 /// integration of the imposed velocity in steps far below the time function's scales).
 double time_to_displacement(const TimeFunction& velocity, double displacement, double end) {
@@ -85,9 +67,9 @@ double band_onset(const ProbeTable& probes, double strain_level) {
 /// The measured band-strip and quiet-region strains against the onset criterion and the expected
 /// onset time; the eps_vp field at the end, with the measured band.
 void report_localization(ValidationReport& report, const CaseDescription& description,
-                         const Sample& sample, const std::filesystem::path& directory,
-                         const ProbeTable& probes, const BandMeasurement& band, double onset,
-                         double expected_onset, double strain_level, double distance) {
+                         const std::filesystem::path& directory, const ProbeTable& probes,
+                         const BandMeasurement& band, double onset, double expected_onset,
+                         double strain_level, double distance) {
   const double yield = material_parameter(description, "soil", "yield_stress");
   report.describe(fmt::format(
       "Thesis 4.4: plane-strain compression of a {:g} m x {:g} m sample of softening Von Mises - "
@@ -98,7 +80,7 @@ void report_localization(ValidationReport& report, const CaseDescription& descri
       "zone reaches a tenth of the first-yield strain and five times that of the upper part of "
       "the sample; it is compared with the quasi-static time of first yield plus one P-wave "
       "transit from the top to the weak zone (+-15 %).",
-      sample.body.width(), sample.body.height(),
+      rectangle_shape(description, 0).width(), rectangle_shape(description, 0).height(),
       material_parameter(description, "soil", "hardening_modulus") /
           material_parameter(description, "soil", "young_modulus"),
       std::abs(final_value(imposed_on(description, "ymax", 1, false), "the top velocity")),
@@ -160,8 +142,8 @@ std::vector<CheckResult> validate_sample2d_localization(const ValidationContext&
   if (context.quick) overrides.push_back({"geometry.spacing", std::to_string(kQuickSpacing)});
   const CaseDescription description =
       load_bundled_case(context, "sample2d-localization", overrides);
-  const Sample sample = sample_of(description);
-  const double height = sample.body.height();
+  const WeakZone weak = read_weak_zone(description);
+  const double height = rectangle_shape(description, 0).height();
 
   std::optional<BandMeasurement> band;
   const auto measure_final_band = [&](const Simulation& simulation) {
@@ -197,10 +179,9 @@ std::vector<CheckResult> validate_sample2d_localization(const ValidationContext&
 
   const double spacing = description.geometry.spacing;
   if (context.report)
-    report_localization(
-        *context.report, description, sample, directory, probes, *band, onset, expected_onset,
-        kOnsetStrainFraction * first_yield_strain,
-        distance_to_band(band->primary, sample.weak_centre_x(), sample.weak_centre_y()));
+    report_localization(*context.report, description, directory, probes, *band, onset,
+                        expected_onset, kOnsetStrainFraction * first_yield_strain,
+                        distance_to_band(band->primary, weak.centre_x(), weak.centre_y()));
   return {
       // ±3°: docs/theory.md eq. 8.2 (first-yield tilt of 1.6° for nu = 0.3 plus lattice
       // quantisation).
@@ -212,8 +193,8 @@ std::vector<CheckResult> validate_sample2d_localization(const ValidationContext&
       check_within("band_onset_time", onset, expected_onset, 0.15 * expected_onset, "s"),
       // The weak-zone half-diagonal plus one spacing (the ridge is located to about a spacing).
       check_at_most("band_distance_to_weak_zone",
-                    distance_to_band(band->primary, sample.weak_centre_x(), sample.weak_centre_y()),
-                    0.0, sample.weak_half_diagonal() + spacing, "m"),
+                    distance_to_band(band->primary, weak.centre_x(), weak.centre_y()), 0.0,
+                    weak.half_diagonal() + spacing, "m"),
   };
 }
 
