@@ -196,7 +196,8 @@ int command_check(const std::string& case_path, const std::vector<std::string>& 
 }
 
 int command_validate(std::vector<std::string> names, bool all, bool quick, bool json,
-                     const std::string& output, const std::string& report, int threads, int jobs) {
+                     const std::string& output, const std::string& report, int threads, int jobs,
+                     const std::vector<std::string>& sets) {
   const auto& cases = validation_cases();
   if (all || names.empty())
     for (const ValidationCase& c : cases)
@@ -227,6 +228,7 @@ int command_validate(std::vector<std::string> names, bool all, bool quick, bool 
                              : output.empty() ? "results/validation"
                                               : output;
   context.quick = quick;
+  context.overrides = parse_overrides(sets);
   context.write_report = !report.empty();
   // Several cases run side by side, one per core, each on its share of the cores: the bundled
   // runs are small enough that a second OpenMP thread mostly waits at barriers.
@@ -329,6 +331,9 @@ int main(int argc, char** argv) {
   validate->add_flag("--quick", quick, "Coarser, shorter variants (as run by make test)");
   validate->add_flag("--json", json, "One JSON object per case per line");
   validate->add_option("-o,--output", output, "Folder for the runs (default results/validation)");
+  validate->add_option("--set", sets,
+                       "Override a key of the cases' files (repeatable); the references follow it, "
+                       "the validation's own settings of its runs (the --quick lattice) win");
   validate
       ->add_option("--threads", threads,
                    "OpenMP threads of each case (default: the cores over the cases run at once)")
@@ -372,7 +377,8 @@ int main(int argc, char** argv) {
     if (*run)
       return command_run(case_path, output, threads, sets, quiet, overwrite, restart, limits);
     if (*check) return command_check(case_path, sets, limits);
-    if (*validate) return command_validate(names, all, quick, json, output, report, threads, jobs);
+    if (*validate)
+      return command_validate(names, all, quick, json, output, report, threads, jobs, sets);
     if (*plot)
       return command_plot(run_directory, field, component, plot_time, magnification, output);
   } catch (const InputError& error) {

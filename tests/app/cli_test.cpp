@@ -420,6 +420,21 @@ TEST(CommandLine, ValidateJobsKeepTheOrderAndTheResults) {
   EXPECT_EQ(run("validate bar1d-elastic --jobs 0").status, 2);
 }
 
+// --set changes the case a validation runs, and its references follow it: slope-elastic at
+// nu = 0.2 and rho = 2500 kg/m3 against K0 = 0.25 and its own overburden. A key the case cannot
+// take fails the case, naming the key.
+TEST(CommandLine, ValidateSetChecksAVariantAgainstItsOwnReferences) {
+  const std::string variant = "validate slope-elastic --quick --json --threads 1 -o " +
+                              scratch("set").string() +
+                              " --set materials.soil.poisson_ratio=0.2"
+                              " --set materials.soil.density=2500";
+  const Result passed = run(variant);
+  EXPECT_EQ(passed.status, 0) << passed.output;
+  const Result unknown = run(variant + " --set materials.soil.no_such_key=1");
+  EXPECT_EQ(unknown.status, 1) << unknown.output;
+  EXPECT_NE(unknown.output.find("no_such_key"), std::string::npos) << unknown.output;
+}
+
 TEST(CommandLine, ValidateRejectsUnknownCaseNames) {
   const Result result = run("validate no-such-case --json");
   EXPECT_EQ(result.status, 2);

@@ -27,6 +27,24 @@ double displacement_at(const ProbeTable& probes, const std::string& column, doub
 
 }  // namespace
 
+double SlopeCut::yield_stress(double stability_number) const {
+  return unit_weight * height * std::sqrt(3.0) / stability_number;
+}
+
+SlopeCut read_slope_cut(const CaseDescription& description) {
+  SlopeCut cut;
+  const Rectangle block = rectangle_shape(description, 0);
+  cut.height = block.height();
+  cut.length = block.width();
+  cut.unit_weight =
+      material_parameter(description, "soil", "density") * downward_gravity(description);
+  const TimeFunction& ramp = description.gravity->factor;
+  if (ramp.kind != TimeFunction::Kind::LinearRamp)
+    throw RunError("case " + description.name + ": the gravity must be ramped in linearly");
+  cut.ramp_end = ramp.start + ramp.duration;
+  return cut;
+}
+
 // Stable <-> the slope is coming to rest: with the load constant after the ramp, the crest's
 // horizontal speed over the last second is below 0.9 of the second before (an e-folding time
 // under about 10 s), or below 1e-5 H per second (at rest to within the run's rounding). Speeds,
@@ -36,11 +54,10 @@ double displacement_at(const ProbeTable& probes, const std::string& column, doub
 // down, so a finite run classifies marginally stable cuts as failing: the bisection errs on the low
 // side.
 
-SlopeRun run_slope(const ValidationContext& context, const std::string& folder,
+SlopeRun run_slope(const ValidationContext& context, const std::string& folder, const SlopeCut& cut,
                    const std::vector<CaseOverride>& base, double stability_number,
                    double end_time) {
-  const double yield_stress =
-      kSlopeUnitWeight * kSlopeCutHeight * std::sqrt(3.0) / stability_number;
+  const double yield_stress = cut.yield_stress(stability_number);
   std::vector<CaseOverride> overrides = base;
   overrides.push_back({"materials.soil.yield_stress", fmt::format("{:.9g}", yield_stress)});
   overrides.push_back({"time.end", fmt::format("{}", end_time)});
@@ -59,23 +76,23 @@ SlopeRun run_slope(const ValidationContext& context, const std::string& folder,
   run.late_rate =
       displacement_at(probes, column, end_time) - displacement_at(probes, column, end_time - 1.0);
   run.stable = std::abs(run.late_rate) < 0.9 * std::abs(run.early_rate) ||
-               std::abs(run.late_rate) < 1e-5 * kSlopeCutHeight;
+               std::abs(run.late_rate) < 1e-5 * cut.height;
   return run;
 }
 
-void report_bisection(ValidationReport& report, const std::string& thesis_case,
+void report_bisection(ValidationReport& report, const std::string& thesis_case, const SlopeCut& cut,
                       std::vector<SlopeRun> runs, double critical, double reference,
                       double end_time) {
   report.describe(fmt::format(
-      "{}: a 10 m vertical cut (20 m x 10 m block, rigid rough base, roller at x = "
-      "0) in a Perzyna Von Mises soil without hardening (gamma = 1/s, N = 1), gravity ramped "
+      "{}: a {:g} m vertical cut ({:g} m x {:g} m block, rigid rough base, roller on its left "
+      "side) in a Perzyna Von Mises soil without hardening (gamma = 1/s, N = 1), gravity ramped "
       "over {:g} s and held to {:g} s. Each run sets the yield stress from a stability number "
       "N = rho g H sqrt(3) / Y; a run is stable when the crest's horizontal velocity over the "
       "last second is below 0.9 of that over the second before (the cut comes to rest), "
       "unstable otherwise (steady or accelerating flow). The critical N is bisected between a "
       "stable and an unstable bracket and compared with Taylor's toe circle, N = {:.2f} "
       "(+-5 %).",
-      thesis_case, kSlopeRampEnd, end_time, reference));
+      thesis_case, cut.height, cut.length, cut.height, cut.ramp_end, end_time, reference));
   std::sort(runs.begin(), runs.end(), [](const SlopeRun& a, const SlopeRun& b) {
     return a.stability_number < b.stability_number;
   });
@@ -133,11 +150,11 @@ void report_bisection(ValidationReport& report, const std::string& thesis_case,
 }
 
 SlopeBisection bisect_stability_number(const ValidationContext& context, const std::string& folder,
-                                       const std::vector<CaseOverride>& base, double stable,
-                                       double failing, int steps, double end_time) {
+                                       const SlopeCut& cut, const std::vector<CaseOverride>& base,
+                                       double stable, double failing, int steps, double end_time) {
   SlopeBisection bisection;
   const auto run_and_keep = [&](double stability_number) {
-    bisection.runs.push_back(run_slope(context, folder, base, stability_number, end_time));
+    bisection.runs.push_back(run_slope(context, folder, cut, base, stability_number, end_time));
     return bisection.runs.back().stable;
   };
   // The bracket is checked before bisecting.

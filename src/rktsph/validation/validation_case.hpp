@@ -36,6 +36,8 @@
 #include <string>
 #include <vector>
 
+#include "rktsph/case/case_reader.hpp"
+
 namespace rktsph {
 
 struct CheckResult {
@@ -128,6 +130,9 @@ struct ValidationContext {
   std::filesystem::path output_directory;  ///< runs go to <output>/<case>/<run>
   bool quick = false;
   bool quiet = true;
+  /// Applied to every case file a case loads, before the case's own settings of its runs (the
+  /// quick variant's, a bisection's): a variant of the case, checked against its own references.
+  std::vector<CaseOverride> overrides;
   /// Set by the caller of run_validation to have <output>/<case>/report.json written.
   bool write_report = false;
   /// Set by run_validation for the case while it runs when write_report is on; null otherwise.

@@ -111,7 +111,9 @@ double ProbeTable::step_arrival(const std::string& name, double plateau, double 
 
 CaseDescription load_bundled_case(const ValidationContext& context, const std::string& folder,
                                   const std::vector<CaseOverride>& overrides) {
-  return read_case_file((context.cases_directory / folder / "case.yaml").string(), overrides);
+  std::vector<CaseOverride> all = context.overrides;
+  all.insert(all.end(), overrides.begin(), overrides.end());
+  return read_case_file((context.cases_directory / folder / "case.yaml").string(), all);
 }
 
 ValidationRun run_allowing_failure(const ValidationContext& context,
@@ -171,6 +173,124 @@ double material_parameter(const CaseDescription& description, const std::string&
     throw RunError("case " + description.name + ": material '" + material + "' has no '" + key +
                    "'");
   return it->second.value;
+}
+
+Rectangle rectangle_shape(const CaseDescription& description, std::size_t index) {
+  if (index >= description.geometry.shapes.size() ||
+      description.geometry.shapes[index].kind != ShapeSpec::Kind::Rectangle)
+    throw RunError(fmt::format("case {}: shape {} of the geometry is not a rectangle",
+                               description.name, index));
+  const std::vector<Vec3>& corners = description.geometry.shapes[index].vertices;
+  return {corners.at(0)[0], corners.at(0)[1], corners.at(1)[0], corners.at(1)[1]};
+}
+
+namespace {
+
+const GroupSpec& find_group(const CaseDescription& description, const std::string& name,
+                            GroupSpec::Kind kind, const char* kind_name) {
+  for (const GroupSpec& group : description.groups)
+    if (group.name == name) {
+      if (group.kind != kind)
+        throw RunError(
+            fmt::format("case {}: group '{}' is not a {}", description.name, name, kind_name));
+      return group;
+    }
+  throw RunError(fmt::format("case {}: no group '{}'", description.name, name));
+}
+
+}  // namespace
+
+Rectangle group_box(const CaseDescription& description, const std::string& name) {
+  const GroupSpec& group = find_group(description, name, GroupSpec::Kind::Box, "box");
+  return {group.min[0], group.min[1], group.max[0], group.max[1]};
+}
+
+Vec3 group_point(const CaseDescription& description, const std::string& name) {
+  return find_group(description, name, GroupSpec::Kind::Point, "point").point;
+}
+
+double downward_gravity(const CaseDescription& description) {
+  if (!description.gravity) throw RunError("case " + description.name + ": no gravity");
+  const Vec3& g = description.gravity->acceleration;
+  if (g[0] != 0.0 || g[2] != 0.0 || !(g[1] < 0.0))
+    throw RunError("case " + description.name + ": gravity must point down, (0, -g)");
+  return -g[1];
+}
+
+const TimeFunction& imposed_on(const CaseDescription& description, const std::string& group,
+                               int axis, bool traction) {
+  const auto kind =
+      traction ? BoundaryConditionSpec::Kind::Traction : BoundaryConditionSpec::Kind::Velocity;
+  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+    const auto& component = traction ? condition.traction : condition.velocity;
+    if (condition.group == group && condition.kind == kind && component.at(axis))
+      return *component.at(axis);
+  }
+  throw RunError(fmt::format("case {}: no {} {} imposed on the group '{}'", description.name,
+                             traction ? "traction" : "velocity", "xyz"[axis], group));
+}
+
+double final_value(const TimeFunction& function, const std::string& what) {
+  switch (function.kind) {
+    case TimeFunction::Kind::Constant:
+    case TimeFunction::Kind::Step:
+    case TimeFunction::Kind::LinearRamp:
+      return function.value;
+    case TimeFunction::Kind::Table:
+      if (!function.table.empty()) return function.table.back().second;
+      break;
+    case TimeFunction::Kind::Harmonic:
+      break;
+  }
+  throw RunError(what + ": a constant, step, ramp or table is needed, not a harmonic function");
+}
+
+FootingRow footing_row(const CaseDescription& description, FootingPlace place) {
+  FootingRow row;
+  row.body = rectangle_shape(description, 0);
+  const Rectangle footing = group_box(description, "footing");
+  row.left = footing.x_min;
+  row.right = footing.x_max;
+  row.surface = footing.y_max;
+  if (footing.y_min != footing.y_max || footing.y_max != row.body.y_max ||
+      footing.x_min < row.body.x_min || footing.x_max > row.body.x_max ||
+      !(footing.x_min < footing.x_max))
+    throw RunError("case " + description.name +
+                   ": the group 'footing' must be a box of one row on the top of the first shape");
+  if (place == FootingPlace::SymmetryPlane && (row.left != 0.0 || row.body.x_min != 0.0))
+    throw RunError("case " + description.name +
+                   ": the footing must start on the symmetry plane x = 0, the body's left side");
+  if (place == FootingPlace::Crest && row.right != row.body.x_max)
+    throw RunError("case " + description.name +
+                   ": the footing must end at the crest, on the body's right side");
+  return row;
+}
+
+StripLoad read_strip_load(const CaseDescription& description) {
+  StripLoad load;
+  load.row = footing_row(description, FootingPlace::SymmetryPlane);
+  const Vec3 edge = group_point(description, "footing_edge");
+  load.half_width = edge[0];
+  const TimeFunction& traction = imposed_on(description, "footing", 1, true);
+  load.history = &traction;
+  load.pressure = -final_value(traction, "the traction on 'footing'");
+  const double edge_load =
+      -final_value(imposed_on(description, "footing_edge", 1, true), "the traction on the edge");
+  // The reference is the strip 0 <= x <= b of the half model about x = 0, loaded by q b in all.
+  if (edge[1] != load.row.surface || !(load.row.right < edge[0]) || !(load.pressure > 0.0) ||
+      std::abs(edge_load - 0.5 * load.pressure) > 1e-12 * load.pressure)
+    throw RunError("case " + description.name +
+                   ": a strip load -q on the row 'footing' from the symmetry plane x = 0 and -q/2 "
+                   "on the point 'footing_edge' at x = b beyond it is expected");
+  return load;
+}
+
+WeakZone read_weak_zone(const CaseDescription& description) {
+  const auto& shapes = description.geometry.shapes;
+  if (shapes.size() != 2 || shapes[1].material == shapes[0].material)
+    throw RunError("case " + description.name +
+                   ": a weak zone, a second shape of its own material, is expected");
+  return {rectangle_shape(description, 1)};
 }
 
 std::vector<double> add_row_probes(CaseDescription& description, const std::string& prefix,

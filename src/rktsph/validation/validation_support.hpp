@@ -2,6 +2,7 @@
 // overrides), run it into the validation output folder, and read its probe histories back.
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <span>
@@ -40,7 +41,7 @@ class ProbeTable {
   std::vector<std::vector<double>> columns_;
 };
 
-/// cases/<folder>/case.yaml with `overrides` applied.
+/// cases/<folder>/case.yaml with context.overrides, then `overrides`, applied.
 CaseDescription load_bundled_case(const ValidationContext& context, const std::string& folder,
                                   const std::vector<CaseOverride>& overrides = {});
 
@@ -70,6 +71,68 @@ ValidationRun run_allowing_failure(const ValidationContext& context,
 /// A numeric parameter of a material block of the case; RunError if it is absent.
 double material_parameter(const CaseDescription& description, const std::string& material,
                           const std::string& key);
+
+/// An axis-aligned rectangle of the x-y plane [m].
+struct Rectangle {
+  double x_min = 0.0, y_min = 0.0, x_max = 0.0, y_max = 0.0;
+  double width() const { return x_max - x_min; }
+  double height() const { return y_max - y_min; }
+};
+
+/// The shape `index` of the case's geometry, which must be a rectangle; RunError otherwise.
+Rectangle rectangle_shape(const CaseDescription& description, std::size_t index);
+
+/// The box of the group `name`; RunError if the case has no such group or it is not a box.
+Rectangle group_box(const CaseDescription& description, const std::string& name);
+
+/// The point of the point group `name`; RunError if the case has no such point group.
+Vec3 group_point(const CaseDescription& description, const std::string& name);
+
+/// g of the case's gravity, which must point down (0, -g); RunError if there is none.
+double downward_gravity(const CaseDescription& description);
+
+/// The time function of component `axis` of the velocity or traction (`traction` true) imposed
+/// on the group `group`; RunError if the case imposes none.
+const TimeFunction& imposed_on(const CaseDescription& description, const std::string& group,
+                               int axis, bool traction);
+
+/// The value a ramped or stepped load settles at (`value` of a constant, step or ramp, the last
+/// point of a table); RunError for a harmonic function, which settles at none.
+double final_value(const TimeFunction& function, const std::string& what);
+
+/// The footing of a footing case: the box group `footing`, one lattice row on the top of the body
+/// (the first shape, a rectangle), either from the symmetry plane x = 0 of a half model (the left
+/// side of the body) or flush with the crest of a cut (its right end on the right side, the cut
+/// face). RunError if the case does not have that shape.
+enum class FootingPlace { SymmetryPlane, Crest };
+struct FootingRow {
+  Rectangle body;
+  double left = 0.0, right = 0.0;  // x of the box's ends [m]
+  double surface = 0.0;            // y of the row, the top of the body [m]
+  double length() const { return right - left; }
+};
+FootingRow footing_row(const CaseDescription& description, FootingPlace place);
+
+/// The flexible strip load of a half model about x = 0 (the elastic strip footing cases): the
+/// traction -q(t) on the row `footing` from the symmetry plane and -q(t)/2 on the point
+/// `footing_edge` at x = b, so that the nodal load sums to q b. RunError otherwise.
+struct StripLoad {
+  FootingRow row;
+  double pressure = 0.0;                  // q, the held load [Pa]
+  double half_width = 0.0;                // b [m]
+  const TimeFunction* history = nullptr;  // -q(t) on the row, in the description read
+};
+StripLoad read_strip_load(const CaseDescription& description);
+
+/// The weak zone of a localisation case: the second shape, a rectangle of another material than
+/// the first (the later shape wins where they overlap); RunError otherwise.
+struct WeakZone {
+  Rectangle box;
+  double centre_x() const { return 0.5 * (box.x_min + box.x_max); }
+  double centre_y() const { return 0.5 * (box.y_min + box.y_max); }
+  double half_diagonal() const { return 0.5 * std::hypot(box.width(), box.height()); }
+};
+WeakZone read_weak_zone(const CaseDescription& description);
 
 /// The saturated column of the v-pw cases, read back from the case file so that a reference uses
 /// exactly its numbers: the first shape (a rectangle from vertex 0 to vertex 1), the material

@@ -25,10 +25,6 @@ namespace rktsph {
 
 namespace {
 
-// As in cases/hanging-beam/case.yaml.
-constexpr double kLength = 10.0, kWidth = 1.0;
-constexpr double kDensity = 2000.0, kGravity = 9.81, kYoungModulus = 1.0e8;
-constexpr double kRamp = 0.2;  // gravity ramp [s]
 // Quick variant: dx = 0.25 m (4 cells across) and a shorter run.
 constexpr double kQuickSpacing = 0.25, kQuickEnd = 0.6;
 // The odd-even ratio is taken while the beam moves: at outputs where max |v_y| is at least 1 % of
@@ -49,6 +45,27 @@ struct OddEvenSample {
   double time = 0.0, oddeven = 0.0, smooth = 0.0;
 };
 
+/// The beam of the case: the first shape, clamped along its top, and the material "soil".
+struct Beam {
+  Rectangle body;
+  double density = 0.0, gravity = 0.0, young = 0.0;
+  /// sigma_yy / eps_yy of the uniaxial hanging bar (sigma_xx = 0): E in plane stress,
+  /// E / (1 - nu^2) in plane strain (eps_zz = 0).
+  double bar_modulus = 0.0;
+};
+
+Beam beam_of(const CaseDescription& description) {
+  Beam beam;
+  beam.body = rectangle_shape(description, 0);
+  beam.density = material_parameter(description, "soil", "density");
+  beam.gravity = downward_gravity(description);
+  beam.young = material_parameter(description, "soil", "young_modulus");
+  const double poisson = material_parameter(description, "soil", "poisson_ratio");
+  beam.bar_modulus =
+      description.plane == PlaneKind::Stress ? beam.young : beam.young / (1.0 - poisson * poisson);
+  return beam;
+}
+
 }  // namespace
 
 std::vector<CheckResult> validate_hanging_beam(const ValidationContext& context) {
@@ -58,19 +75,22 @@ std::vector<CheckResult> validate_hanging_beam(const ValidationContext& context)
     overrides.push_back({"time.end", fmt::format("{:g}", kQuickEnd)});
   }
   const CaseDescription description = load_bundled_case(context, "hanging-beam", overrides);
+  const Beam beam = beam_of(description);
+  const double length = beam.body.height(), width = beam.body.width();
   std::vector<OddEvenSample> samples;
   SampledObserver oddeven(description.output.probe_interval, [&](const Simulation& simulation) {
     const LatticeField vy = lattice_field(simulation, simulation.model().velocity_field(1));
     // Nodes near the clamped corners are left out: see kCornerExclusion.
-    const double radius = std::max(kCornerExclusion * kWidth, 3.0 * vy.spacing);
-    samples.push_back(
-        {simulation.state().time,
-         checkerboard_amplitude(vy,
-                                [radius](double x, double y) {
-                                  return std::min(std::hypot(x, y - kLength),
-                                                  std::hypot(x - kWidth, y - kLength)) < radius;
-                                }),
-         max_abs(vy)});
+    const double radius = std::max(kCornerExclusion * width, 3.0 * vy.spacing);
+    samples.push_back({simulation.state().time,
+                       checkerboard_amplitude(
+                           vy,
+                           [radius, &beam](double x, double y) {
+                             const Rectangle& top = beam.body;
+                             return std::min(std::hypot(x - top.x_min, y - top.y_max),
+                                             std::hypot(x - top.x_max, y - top.y_max)) < radius;
+                           }),
+                       max_abs(vy)});
   });
   const std::filesystem::path run_directory =
       run_for_validation(context, description, context.quick ? "quick" : "full", {}, {&oddeven});
@@ -91,23 +111,27 @@ std::vector<CheckResult> validate_hanging_beam(const ValidationContext& context)
     }
   }
   if (times.empty()) ratio = std::numeric_limits<double>::quiet_NaN();
-  const double reference = kDensity * kGravity * kLength * kLength / (2.0 * kYoungModulus);
+  const double reference = beam.density * beam.gravity * length * length / (2.0 * beam.bar_modulus);
   const double tip = -probes.column("tip.displacement_y").back();
   const double tip_error = relative_error(tip, reference);
 
   if (context.report) {
     ValidationReport& report = *context.report;
     report.describe(fmt::format(
-        "Thesis V2-0 in small deformation: an elastic beam {:g} m wide and {:g} m long (E = 100 "
-        "MPa, nu = 0.3, rho = 2000 kg/m3, plane stress, dx = {:g} m) clamped at its top, hanging "
-        "under gravity ramped in over {:g} s, with mass damping 70/s (about critical for the first "
-        "axial mode). References: the static tip displacement of the uniaxial hanging bar, rho g "
-        "L^2 / (2E) = {:.3f} mm (measured {:.3f} mm at the end); the velocity must carry no "
+        "Thesis V2-0 in small deformation: an elastic beam {:g} m wide and {:g} m long (E = {:g} "
+        "MPa, nu = {:g}, rho = {:g} kg/m3, plane {}, dx = {:g} m) clamped at its top, hanging "
+        "under gravity ramped in over {:g} s, with mass damping {:g}/s (about critical for the "
+        "first axial mode). References: the static tip displacement of the uniaxial hanging bar, "
+        "rho g L^2 / (2E) = {:.3f} mm (E / (1 - nu^2) in plane strain; measured {:.3f} mm at the "
+        "end); the velocity must carry no "
         "node-to-node (odd-even) mode: the (-1)^(i+j) part of v_y over max |v_y| is at most {:.2g} "
         "(at t = {:.3f} s) over the outputs where the beam moves (max |v_y| >= {:g} of its peak), "
         "the nodes near the clamped corners (a singular corner of the elastic field) left out.",
-        kWidth, kLength, description.geometry.spacing, kRamp, 1e3 * reference, 1e3 * tip, ratio,
-        worst_time, kMovingFraction));
+        width, length, 1e-6 * beam.young, material_parameter(description, "soil", "poisson_ratio"),
+        beam.density, description.plane == PlaneKind::Stress ? "stress" : "strain",
+        description.geometry.spacing, description.gravity->factor.duration,
+        description.damping ? description.damping->coefficient : 0.0, 1e3 * reference, 1e3 * tip,
+        ratio, worst_time, kMovingFraction));
     Series history{"SPH, mean u_y of the free end", probes.time(), {}, "line"};
     for (double u : probes.column("tip.displacement_y"))
       history.y.push_back(-1e3 * u);

@@ -32,26 +32,27 @@ namespace rktsph {
 namespace {
 
 constexpr char kCase[] = "ld-slope-low-cohesion";
-constexpr double kGravity = 9.81;
 constexpr double kSampleInterval = 0.02;  // [s] of the kinetic-energy and front histories
 
 // The block of the case file: the first shape, a rectangle from the back wall x = 0 on the base.
 struct Block {
   double width = 0.0, height = 0.0;  // W0, H0 [m]
   double density = 0.0;              // rho [kg/m3]
+  double gravity = 0.0;              // g [m/s2]
   double cohesion = 0.0;             // c = Y / sqrt(3) [Pa]
-  double unit_weight() const { return density * kGravity; }
+  double unit_weight() const { return density * gravity; }
   double runout_bound() const {
     return references::nye_minimum_runout(width * height, cohesion, unit_weight());
   }
 };
 
 Block read_block(const CaseDescription& description) {
-  const ShapeSpec& rectangle = description.geometry.shapes.at(0);
+  const Rectangle rectangle = rectangle_shape(description, 0);
   Block block;
-  block.width = rectangle.vertices.at(1)[0] - rectangle.vertices.at(0)[0];
-  block.height = rectangle.vertices.at(1)[1] - rectangle.vertices.at(0)[1];
+  block.width = rectangle.width();
+  block.height = rectangle.height();
   block.density = material_parameter(description, "soil", "density");
+  block.gravity = downward_gravity(description);
   block.cohesion = material_parameter(description, "soil", "yield_stress") / std::sqrt(3.0);
   return block;
 }
@@ -171,9 +172,10 @@ void report(ValidationReport& report, const std::vector<Collapse>& runs, const B
         {fmt::format("SPH, dx = {:g} m", run.spacing), run.time, run.front, "line"});
   }
   const double last = finest.time.back();
-  fronts.series.push_back(sample_curve(
-      "Ritter dam break (upper bound)", 0.0, last, 50,
-      [&](double t) { return references::ritter_front(t, block.width, block.height, kGravity); }));
+  fronts.series.push_back(
+      sample_curve("Ritter dam break (upper bound)", 0.0, last, 50, [&](double t) {
+        return references::ritter_front(t, block.width, block.height, block.gravity);
+      }));
   fronts.series.push_back(
       sample_curve("minimum run-out at rest", 0.0, last, 2, [&](double) { return runout; }));
   report.add_figure(std::move(energy));

@@ -36,11 +36,7 @@ namespace rktsph {
 
 namespace {
 
-// As in cases/ld-vertical-cut-footing/case.yaml.
 constexpr char kCase[] = "ld-vertical-cut-footing";
-constexpr double kFootingWidth = 2.0;
-constexpr double kFootingLeft = 6.0;  // inner footing edge; the crest is at x = 8 m, y = 6 m
-constexpr double kCrestY = 6.0;
 // The plateau: settlements from 0.1 B (well past the elastic 10 mm) to 0.3 B.
 constexpr double kPlateauFrom = 0.1, kPlateauTo = 0.3;
 // The softening run: Y drops at H = -5e5 Pa per unit eps_vp to 0.6 Y.
@@ -50,14 +46,12 @@ constexpr double kQuickSpacing = 0.25;
 // The state of the run is sampled every kSampling seconds of simulated time (0.025 B of
 // settlement).
 constexpr double kSampling = 1.0;
-// Band measurement region: below the footing and up to 2 B under the crest.
-constexpr double kBandRegionDepth = 2.0 * kFootingWidth;
 
-double plateau_pressure(const FootingHistory& history) {
+double plateau_pressure(const FootingHistory& history, double footing_width) {
   double sum = 0.0;
   int samples = 0;
   for (std::size_t row = 0; row < history.time.size(); ++row) {
-    const double s = history.settlement[row] / kFootingWidth;
+    const double s = history.settlement[row] / footing_width;
     if (s < kPlateauFrom || s > kPlateauTo) continue;
     sum += history.pressure[row];
     ++samples;
@@ -72,18 +66,21 @@ double softening_drop(const FootingHistory& history) {
   return peak > 0.0 ? (peak - history.pressure.back()) / peak : 0.0;
 }
 
-BandMeasurement measure_wedge_band(const Simulation& simulation) {
-  return measure_band_in_region(simulation, kCase, kFootingLeft - kFootingWidth,
-                                kCrestY - kBandRegionDepth);
+// Band measurement region: below the footing and up to 2 B under the crest.
+BandMeasurement measure_wedge_band(const Simulation& simulation, const FootingRow& footing) {
+  return measure_band_in_region(simulation, kCase, footing.left - footing.length(),
+                                footing.surface - 2.0 * footing.length());
 }
 
-void report_vertical_cut(ValidationReport& report, const FootingHistory& perfect,
-                         const FootingHistory& softening, const FootingHistory* coarse,
-                         double spacing, double limit, double plateau, const BandMeasurement& band,
-                         const NodeLine& contact, double contact_ratio, double yield_stress) {
+void report_vertical_cut(ValidationReport& report, const FootingRow& footing,
+                         const FootingHistory& perfect, const FootingHistory& softening,
+                         const FootingHistory* coarse, double spacing, double limit, double plateau,
+                         const BandMeasurement& band, const NodeLine& contact, double contact_ratio,
+                         double yield_stress) {
   const double cohesion = references::von_mises_plane_strain_cohesion(yield_stress);
+  const double footing_width = footing.length();
   const double end =
-      std::max(perfect.settlement.back(), softening.settlement.back()) / kFootingWidth;
+      std::max(perfect.settlement.back(), softening.settlement.back()) / footing_width;
   report.describe(fmt::format(
       "Thesis 5.3.6 (Appendix 4): a smooth rigid strip footing B = {:g} m flush with the crest "
       "of a vertical cut (half model, dx = {:g} m) in dry, weightless Von Mises-Perzyna soil, "
@@ -94,7 +91,7 @@ void report_vertical_cut(ValidationReport& report, const FootingHistory& perfect
       "{:.1f} kPa. Band of eps_vp at s = {:g} B on the reference positions: {:.1f} degrees from "
       "the vertical. A softening run (H = {:g} kPa, floor {:g} Y) peaks and drops towards 2 c_res "
       "= {:.1f} kPa.",
-      kFootingWidth, spacing, perfect.settlement.back() / kFootingWidth, 1e-3 * limit, kPlateauFrom,
+      footing_width, spacing, perfect.settlement.back() / footing_width, 1e-3 * limit, kPlateauFrom,
       kPlateauTo, 1e-3 * plateau, kPlateauFrom, band.primary.angle_deg, 1e-3 * kSofteningModulus,
       kResidualFraction,
       1e-3 * references::footing_on_cut_limit_pressure(
@@ -104,11 +101,11 @@ void report_vertical_cut(ValidationReport& report, const FootingHistory& perfect
               "settlement s / B [-]",
               "footing pressure q [kPa]",
               {footing_pressure_series(fmt::format("SPH, no hardening, dx = {:g} m", spacing),
-                                       perfect, kFootingWidth),
-               footing_pressure_series("SPH, softening", softening, kFootingWidth)}};
+                                       perfect, footing_width),
+               footing_pressure_series("SPH, softening", softening, footing_width)}};
   if (coarse)
     load.series.push_back(footing_pressure_series(
-        fmt::format("SPH, no hardening, dx = {:g} m", kQuickSpacing), *coarse, kFootingWidth));
+        fmt::format("SPH, no hardening, dx = {:g} m", kQuickSpacing), *coarse, footing_width));
   load.series.push_back(
       sample_curve("2c = 2 Y / sqrt(3)", 0.0, end, 2, [&](double) { return 1e-3 * limit; }));
   load.series.push_back(sample_curve("2 c_res", 0.0, end, 2,
@@ -122,10 +119,11 @@ void report_vertical_cut(ValidationReport& report, const FootingHistory& perfect
        fmt::format("Contact pressure node by node at the end of the plateau (odd-even ratio, "
                    "largest on the plateau: {:.4f})",
                    contact_ratio),
-       "x of the node in the reference configuration [m] (footing 6 <= x <= 8 m)",
+       fmt::format("x of the node in the reference configuration [m] (footing {:g} <= x <= {:g} m)",
+                   footing.left, footing.right),
        "-sigma_yy [kPa]",
-       {std::move(measured), sample_curve("2c", kFootingLeft, kFootingLeft + kFootingWidth, 2,
-                                          [&](double) { return 1e-3 * limit; })}});
+       {std::move(measured),
+        sample_curve("2c", footing.left, footing.right, 2, [&](double) { return 1e-3 * limit; })}});
   report.add_picture({"eps_vp", perfect.directory.string(), "eps_vp", -1, -1.0, 0.0,
                       fmt::format("Equivalent viscoplastic strain at the end of the push on the "
                                   "deformed configuration (true scale), no hardening: the wedge "
@@ -144,14 +142,17 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
   const CaseDescription description = load_bundled_case(context, kCase, overrides);
   const double spacing = description.geometry.spacing;
   const double yield_stress = material_parameter(description, "soil", "yield_stress");
-  const int footing_nodes = static_cast<int>(std::lround(kFootingWidth / spacing)) + 1;
+  const FootingRow footing = footing_row(description, FootingPlace::Crest);
+  const double footing_width = footing.length();
+  const int footing_nodes = static_cast<int>(std::lround(footing_width / spacing)) + 1;
 
   // The band at s = 0.1 B, the contact pressure at every field output on the plateau.
   std::optional<BandMeasurement> band;
-  FootingContactSampler contact{kCrestY,       kFootingLeft, kFootingLeft + kFootingWidth,
-                                kFootingWidth, kPlateauFrom, kPlateauTo};
+  FootingContactSampler contact{footing.surface, footing.left, footing.right,
+                                footing_width,   kPlateauFrom, kPlateauTo};
   SampledObserver plateau_states(kSampling, [&](const Simulation& simulation) {
-    if (contact.sample(simulation) >= kPlateauFrom && !band) band = measure_wedge_band(simulation);
+    if (contact.sample(simulation) >= kPlateauFrom && !band)
+      band = measure_wedge_band(simulation, footing);
   });
   // A run that stops early (a cell folding, docs/theory.md §9.12) is checked on what it wrote:
   // settlement_reached then fails with the settlement it got to.
@@ -171,15 +172,16 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
 
   const double limit = references::footing_on_cut_limit_pressure(
       references::von_mises_plane_strain_cohesion(yield_stress));
-  const double plateau = plateau_pressure(perfect);
+  const double plateau = plateau_pressure(perfect, footing_width);
   if (context.report) {
     // The second resolution of the report (full runs only): the quick variant's lattice.
     std::optional<FootingHistory> coarse;
     if (!context.quick)
-      coarse = run_coarse_footing(context, kCase, kQuickSpacing, kFootingWidth, "stress_yy",
+      coarse = run_coarse_footing(context, kCase, kQuickSpacing, footing_width, "stress_yy",
                                   "inner", "crest");
-    report_vertical_cut(*context.report, perfect, softening, coarse ? &*coarse : nullptr, spacing,
-                        limit, plateau, *band, contact.last, contact.largest_ratio, yield_stress);
+    report_vertical_cut(*context.report, footing, perfect, softening, coarse ? &*coarse : nullptr,
+                        spacing, limit, plateau, *band, contact.last, contact.largest_ratio,
+                        yield_stress);
     for (const ValidationRun* run : {&perfect_run, &softening_run})
       if (!run->completed)
         context.report->describe(context.report->description() + " A run stopped early (" +
@@ -191,7 +193,7 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
   // left out). settlement_reached 0.3 and softening_drop 0.1: the floors.
   return {
       check_at_most("limit_pressure_error", relative_error(plateau, limit), 0.0, 0.05, "fraction"),
-      check_at_least("settlement_reached", perfect.settlement.back() / kFootingWidth, 0.3, 0.3,
+      check_at_least("settlement_reached", perfect.settlement.back() / footing_width, 0.3, 0.3,
                      "fraction"),
       check_at_least("softening_drop", softening_drop(softening), 0.1, 0.1, "fraction"),
       check_at_most("contact_pressure_oddeven_ratio", contact.largest_ratio, 0.0, 0.05, "fraction"),

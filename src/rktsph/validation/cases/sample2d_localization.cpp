@@ -33,11 +33,6 @@ namespace rktsph {
 
 namespace {
 
-// As in cases/sample2d-localization/case.yaml.
-constexpr double kSampleHeight = 2.0;
-constexpr double kWeakZoneCentreX = 0.05;  // the weak zone is [0, 0.1] x [0, 0.1]
-constexpr double kWeakZoneCentreY = 0.05;
-constexpr double kWeakZoneHalfDiagonal = 0.0707;
 // Quick variant: half the lattice density (21 x 41 nodes; the weak zone is 2 x 2 cells).
 constexpr double kQuickSpacing = 0.05;
 
@@ -46,13 +41,6 @@ constexpr double kQuickSpacing = 0.05;
 // exceed the quiet region's mean this many times (a band, not diffuse yielding).
 constexpr double kOnsetStrainFraction = 0.1;
 constexpr double kOnsetConcentration = 5.0;
-
-/// The imposed top velocity v_y(t) (the ymax condition of the case).
-const TimeFunction& top_velocity(const CaseDescription& description) {
-  for (const BoundaryConditionSpec& condition : description.boundary_conditions)
-    if (condition.group == "ymax" && condition.velocity[1]) return *condition.velocity[1];
-  throw RunError("sample2d-localization: the case imposes no vertical velocity on ymax");
-}
 
 /// Quasi-static time at which the imposed top displacement reaches `displacement` (trapezoidal
 /// integration of the imposed velocity in steps far below the time function's scales).
@@ -78,18 +66,26 @@ double band_onset(const ProbeTable& probes, double strain_level) {
 
 /// The measured band-strip and quiet-region strains against the onset criterion and the expected
 /// onset time; the eps_vp field at the end, with the measured band.
-void report_localization(ValidationReport& report, const std::filesystem::path& directory,
-                         const ProbeTable& probes, const BandMeasurement& band, double onset,
-                         double expected_onset, double strain_level, double distance) {
-  report.describe(
-      "Thesis 4.4: plane-strain compression of a 1 m x 2 m sample of softening Von Mises - "
-      "Perzyna material (H = -E/10) by a top velocity ramped to 0.1 m/s, with a weaker corner "
-      "zone (0.9 Y0) at the bottom left. One shear band should grow from the weak zone at 45 "
+void report_localization(ValidationReport& report, const CaseDescription& description,
+                         const std::filesystem::path& directory, const ProbeTable& probes,
+                         const BandMeasurement& band, double onset, double expected_onset,
+                         double strain_level, double distance) {
+  const double yield = material_parameter(description, "soil", "yield_stress");
+  report.describe(fmt::format(
+      "Thesis 4.4: plane-strain compression of a {:g} m x {:g} m sample of softening Von Mises - "
+      "Perzyna material (H = {:g} E) by a top velocity ramped to {:g} m/s, with a weaker corner "
+      "zone ({:g} Y0) at the bottom left. One shear band should grow from the weak zone at 45 "
       "degrees to the loading axis (associated J2 in plane strain with developed flow). The "
       "onset time is when the mean eps_vp of a strip along the 45-degree line from the weak "
       "zone reaches a tenth of the first-yield strain and five times that of the upper part of "
       "the sample; it is compared with the quasi-static time of first yield plus one P-wave "
-      "transit from the top to the weak zone (+-15 %).");
+      "transit from the top to the weak zone (+-15 %).",
+      rectangle_shape(description, 0).width(), rectangle_shape(description, 0).height(),
+      material_parameter(description, "soil", "hardening_modulus") /
+          material_parameter(description, "soil", "young_modulus"),
+      std::abs(final_value(imposed_on(description, "ymax", 1, false), "the top velocity")),
+      material_parameter(description, description.geometry.shapes.at(1).material, "yield_stress") /
+          yield));
   const std::vector<double>& time = probes.time();
   // On a log axis; strains below a hundredth of the onset level (the elastic phase) are left out.
   const double floor = 0.01 * strain_level;
@@ -146,6 +142,8 @@ std::vector<CheckResult> validate_sample2d_localization(const ValidationContext&
   if (context.quick) overrides.push_back({"geometry.spacing", std::to_string(kQuickSpacing)});
   const CaseDescription description =
       load_bundled_case(context, "sample2d-localization", overrides);
+  const WeakZone weak = read_weak_zone(description);
+  const double height = rectangle_shape(description, 0).height();
 
   std::optional<BandMeasurement> band;
   const auto measure_final_band = [&](const Simulation& simulation) {
@@ -173,17 +171,17 @@ std::vector<CheckResult> validate_sample2d_localization(const ValidationContext&
   const double p_wave_speed =
       std::sqrt(young * (1.0 - poisson) / ((1.0 + poisson) * (1.0 - 2.0 * poisson) * density));
   const double expected_onset =
-      time_to_displacement(top_velocity(description), first_yield_strain * kSampleHeight,
+      time_to_displacement(imposed_on(description, "ymax", 1, false), first_yield_strain * height,
                            description.time.end) +
-      kSampleHeight / p_wave_speed;
+      height / p_wave_speed;
   const ProbeTable probes = ProbeTable::read(directory / "probes.csv");
   const double onset = band_onset(probes, kOnsetStrainFraction * first_yield_strain);
 
   const double spacing = description.geometry.spacing;
   if (context.report)
-    report_localization(*context.report, directory, probes, *band, onset, expected_onset,
-                        kOnsetStrainFraction * first_yield_strain,
-                        distance_to_band(band->primary, kWeakZoneCentreX, kWeakZoneCentreY));
+    report_localization(*context.report, description, directory, probes, *band, onset,
+                        expected_onset, kOnsetStrainFraction * first_yield_strain,
+                        distance_to_band(band->primary, weak.centre_x(), weak.centre_y()));
   return {
       // ±3°: docs/theory.md eq. 8.2 (first-yield tilt of 1.6° for nu = 0.3 plus lattice
       // quantisation).
@@ -195,8 +193,8 @@ std::vector<CheckResult> validate_sample2d_localization(const ValidationContext&
       check_within("band_onset_time", onset, expected_onset, 0.15 * expected_onset, "s"),
       // The weak-zone half-diagonal plus one spacing (the ridge is located to about a spacing).
       check_at_most("band_distance_to_weak_zone",
-                    distance_to_band(band->primary, kWeakZoneCentreX, kWeakZoneCentreY), 0.0,
-                    kWeakZoneHalfDiagonal + spacing, "m"),
+                    distance_to_band(band->primary, weak.centre_x(), weak.centre_y()), 0.0,
+                    weak.half_diagonal() + spacing, "m"),
   };
 }
 

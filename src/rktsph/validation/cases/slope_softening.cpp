@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "rktsph/validation/slope_bisection.hpp"
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
@@ -17,22 +18,21 @@ namespace rktsph {
 
 namespace {
 
-constexpr double kCutHeight = 10.0;  // as in cases/slope-softening/case.yaml
-// Failure: the crest has moved 0.03 H = 0.3 m towards the cut. Without softening the same cut
+// Failure: the crest has moved 0.03 H (0.3 m) towards the cut. Without softening the same cut
 // (N = 3.5 < N_c) comes to rest with the crest about 0.1 m out (slope-viscoplastic runs), so the
 // threshold is reached only by a sliding mechanism.
-constexpr double kFailureDisplacement = 0.03 * kCutHeight;
+constexpr double kFailureFraction = 0.03;
 
 struct SofteningRun {
-  double failure_time = 0.0;  ///< first crossing of kFailureDisplacement, NaN if none
+  double failure_time = 0.0;  ///< first crossing of kFailureFraction H, NaN if none
   // For the report.
   double hardening_modulus = 0.0;
   std::filesystem::path directory;
   ProbeTable probes;
 };
 
-SofteningRun failure_time(const ValidationContext& context, const std::vector<CaseOverride>& base,
-                          double hardening_modulus) {
+SofteningRun failure_time(const ValidationContext& context, const SlopeCut& cut,
+                          const std::vector<CaseOverride>& base, double hardening_modulus) {
   std::vector<CaseOverride> overrides = base;
   overrides.push_back(
       {"materials.soil.hardening_modulus", fmt::format("{:.9g}", hardening_modulus)});
@@ -42,22 +42,31 @@ SofteningRun failure_time(const ValidationContext& context, const std::vector<Ca
   run.directory =
       run_for_validation(context, description, fmt::format("H{:.3g}", hardening_modulus));
   run.probes = ProbeTable::read(run.directory / "probes.csv");
-  run.failure_time = run.probes.first_crossing("crest.displacement_x", kFailureDisplacement);
+  run.failure_time =
+      run.probes.first_crossing("crest.displacement_x", kFailureFraction * cut.height);
   return run;
 }
 
 /// The crest histories that define failure, with the threshold and the failure times, and the
 /// eps_vp field of the strongly softening run.
-void report_softening(ValidationReport& report, const std::vector<const SofteningRun*>& runs,
+void report_softening(ValidationReport& report, const CaseDescription& description,
+                      const SlopeCut& cut, const std::vector<const SofteningRun*>& runs,
                       double end_time) {
+  const double failure_displacement = kFailureFraction * cut.height;
+  // N = gamma H sqrt(3) / Y is cut.yield_stress inverted: N = N' Y(N') / Y for any N'.
+  const auto stability_number = [&cut](double yield_stress) {
+    return cut.yield_stress(1.0) / yield_stress;
+  };
   report.describe(fmt::format(
       "Thesis 4.5.3: the vertical cut of slope-viscoplastic with a peak strength a little above "
-      "critical (N0 = rho g H sqrt(3) / Y0 = 3.5) and linear softening towards a residual "
-      "strength below it (N_res = 5.86), run with two softening moduli. There is no closed form "
+      "critical (N0 = rho g H sqrt(3) / Y0 = {:.3g}) and linear softening towards a residual "
+      "strength below it (N_res = {:.3g}), run with two softening moduli. There is no closed form "
       "for progressive failure: the cut must fail within the run (the crest moves {:g} m = "
-      "0.03 H towards the cut, which a cut that comes to rest does not reach) and the stronger "
+      "{:g} H towards the cut, which a cut that comes to rest does not reach) and the stronger "
       "softening must fail sooner.",
-      kFailureDisplacement));
+      stability_number(material_parameter(description, "soil", "yield_stress")),
+      stability_number(material_parameter(description, "soil", "minimum_yield_stress")),
+      failure_displacement, kFailureFraction));
   Figure crest{"crest_displacement",
                "Horizontal displacement of the crest towards the cut",
                "time [s]",
@@ -73,13 +82,13 @@ void report_softening(ValidationReport& report, const std::vector<const Softenin
          run->probes.time(), run->probes.column("crest.displacement_x"), "line"});
     if (std::isfinite(run->failure_time)) {
       failures.x.push_back(run->failure_time);
-      failures.y.push_back(kFailureDisplacement);
+      failures.y.push_back(failure_displacement);
     }
   }
   crest.series.push_back(std::move(failures));
-  crest.series.push_back(
-      sample_curve(fmt::format("failure threshold 0.03 H = {:g} m", kFailureDisplacement), 0.0,
-                   end_time, 2, [](double) { return kFailureDisplacement; }));
+  crest.series.push_back(sample_curve(
+      fmt::format("failure threshold {:g} H = {:g} m", kFailureFraction, failure_displacement), 0.0,
+      end_time, 2, [failure_displacement](double) { return failure_displacement; }));
   report.add_figure(std::move(crest));
   const SofteningRun& strong = *runs.front();
   report.add_picture(
@@ -97,10 +106,13 @@ std::vector<CheckResult> validate_slope_softening(const ValidationContext& conte
   // Quick: 20 cells over H (the full case has 40). At 10 the band is a tenth of the cut and the
   // cells' hourglass stiffness holds it: the mild cut does not fail within the run (README.md).
   if (context.quick) base.push_back({"geometry.spacing", "0.5"});
-  const double end_time = 12.0;  // as in case.yaml
-  const SofteningRun strong_run = failure_time(context, base, -1.0e6);
-  const SofteningRun mild_run = failure_time(context, base, -2.5e5);
-  if (context.report) report_softening(*context.report, {&strong_run, &mild_run}, end_time);
+  const CaseDescription description = load_bundled_case(context, "slope-softening", base);
+  const SlopeCut cut = read_slope_cut(description);
+  const double end_time = description.time.end;
+  const SofteningRun strong_run = failure_time(context, cut, base, -1.0e6);
+  const SofteningRun mild_run = failure_time(context, cut, base, -2.5e5);
+  if (context.report)
+    report_softening(*context.report, description, cut, {&strong_run, &mild_run}, end_time);
   const double strong = strong_run.failure_time, mild = mild_run.failure_time;
   const bool monotone = std::isfinite(strong) && std::isfinite(mild) && strong < mild;
   // A failure time passes if the cut fails within the run (NaN, no failure, fails the check).

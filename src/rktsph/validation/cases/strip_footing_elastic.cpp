@@ -32,12 +32,6 @@ namespace rktsph {
 
 namespace {
 
-// As in cases/strip-footing-elastic/case.yaml.
-constexpr double kLoad = 50000.0;   // q [Pa]
-constexpr double kHalfWidth = 2.0;  // b [m]
-constexpr double kSurface = 24.0;   // y of the loaded surface [m]
-constexpr double kPoissonRatio = 0.3;
-constexpr double kYoungModulus = 1.0e7;
 constexpr double kDepthsOverHalfWidth[] = {0.5, 1.0, 1.5, 2.0};
 // Quick variant: the same lattice (b/dx = 8: at b/dx = 4 the error is 0.070 q at z = b/2, two
 // nodes under the load) on a box half as large, 6b x 6b (x <= 12 m, y >= 12 m: the loaded surface
@@ -49,15 +43,30 @@ constexpr double kQuickBox = 12.0;
 constexpr double kQuickDamping = 10.0;
 constexpr double kQuickEnd = 2.5;
 
-/// The reference on the centre line: the strip on the smooth-walled box of the run.
-references::StripStress reference_at(const references::SmoothLayer& box, double depth) {
-  return references::strip_on_smooth_layer_stress(kLoad, kHalfWidth, box, 0.0, depth);
+/// The strip of the case (read_strip_load) and the stratum's Young's modulus.
+struct Strip {
+  double load = 0.0, half_width = 0.0, surface = 0.0;  // q [Pa], b [m], y of the surface [m]
+  double young_modulus = 0.0;
+  references::SmoothLayer box;  // the box of the run, with its Poisson's ratio
+};
+
+Strip strip_of(const CaseDescription& description) {
+  const StripLoad load = read_strip_load(description);
+  Strip strip;
+  strip.load = load.pressure;
+  strip.half_width = load.half_width;
+  strip.surface = load.row.surface;
+  strip.young_modulus = material_parameter(description, "soil", "young_modulus");
+  // Its far side and base from the case's rectangle.
+  strip.box = {load.row.body.width(), strip.surface - load.row.body.y_min,
+               material_parameter(description, "soil", "poisson_ratio")};
+  return strip;
 }
 
-/// The box of the run: its far side and base from the case's rectangle.
-references::SmoothLayer box_of(const CaseDescription& description) {
-  const std::vector<Vec3>& corners = description.geometry.shapes.at(0).vertices;
-  return {corners.at(1)[0] - corners.at(0)[0], kSurface - corners.at(0)[1], kPoissonRatio};
+/// The reference on the centre line: the strip on the smooth-walled box of the run.
+references::StripStress reference_at(const Strip& strip, double depth) {
+  return references::strip_on_smooth_layer_stress(strip.load, strip.half_width, strip.box, 0.0,
+                                                  depth);
 }
 
 /// Compression-positive stresses of the centre-line nodes, top to bottom.
@@ -65,14 +74,14 @@ struct CentreLine {
   std::vector<double> depth, sigma_yy, sigma_xx;
 };
 
-CentreLine centre_line(const Simulation& simulation) {
+CentreLine centre_line(const Simulation& simulation, double surface) {
   const NodeSets& nodes = simulation.nodes();
   const FieldArray& fields = simulation.state().fields;
   const int xx = simulation.model().stress_field(0, 0), yy = simulation.model().stress_field(1, 1);
   std::vector<std::pair<double, std::size_t>> column;
   for (std::size_t k = 0; k < nodes.sph_nodes.size(); ++k)
     if (std::abs(nodes.sph_nodes.position[0][k]) < 0.25 * nodes.spacing)
-      column.emplace_back(kSurface - nodes.sph_nodes.position[1][k], k);
+      column.emplace_back(surface - nodes.sph_nodes.position[1][k], k);
   std::sort(column.begin(), column.end());
   CentreLine line;
   for (const auto& [depth, k] : column) {
@@ -93,13 +102,12 @@ std::pair<double, double> at_depth(const CentreLine& line, double depth, double 
 }
 
 void report_strip(ValidationReport& report, const std::filesystem::path& run_directory,
-                  const references::SmoothLayer& box, const CentreLine& line,
-                  const NodeLine& settlement, const SpeedHistory& speeds, double spacing,
-                  double stress_error, double flamant_error, double residual,
-                  double settlement_ratio) {
+                  const Strip& strip, const CentreLine& line, const NodeLine& settlement,
+                  const SpeedHistory& speeds, double spacing, double stress_error,
+                  double flamant_error, double residual, double settlement_ratio) {
   report.describe(fmt::format(
       "A uniform flexible strip load q = {:g} kPa of half width b = {:g} m (B = 2b), ramped in "
-      "over 0.5 s and held, on a weightless dry linear-elastic stratum (E = 10 MPa, nu = 0.3, "
+      "and held, on a weightless dry linear-elastic stratum (E = {:g} MPa, nu = {:g}, "
       "plane strain; half model {:g}b x {:g}b with the symmetry plane x = 0, smooth far side and "
       "base, dx = {:g} m), mass-damped to rest. Reference: the Flamant strip solution, on the "
       "centre "
@@ -110,10 +118,12 @@ void report_strip(ValidationReport& report, const std::filesystem::path& run_dir
       "over q: "
       "{:.4f} (against the half-plane Flamant solution: {:.4f}). Residual velocity at the end over "
       "its peak: {:.2g}; odd-even ratio of the surface settlement over 0 <= x <= 5b: {:.4f}.",
-      1e-3 * kLoad, kHalfWidth, box.width / kHalfWidth, box.depth / kHalfWidth, spacing,
-      stress_error, flamant_error, residual, settlement_ratio));
-  const double bottom = line.depth.empty() ? kSurface : line.depth.back();
-  const double from = 0.25 * kHalfWidth;  // the Flamant curve from z = b/4 (singular at z = 0)
+      1e-3 * strip.load, strip.half_width, 1e-6 * strip.young_modulus, strip.box.poisson_ratio,
+      strip.box.width / strip.half_width, strip.box.depth / strip.half_width, spacing, stress_error,
+      flamant_error, residual, settlement_ratio));
+  const double load = strip.load, half_width = strip.half_width;
+  const double bottom = line.depth.empty() ? strip.surface : line.depth.back();
+  const double from = 0.25 * half_width;  // the Flamant curve from z = b/4 (singular at z = 0)
   const auto kpa = [](std::vector<double> values) {
     for (double& v : values)
       v *= 1e-3;
@@ -121,10 +131,10 @@ void report_strip(ValidationReport& report, const std::filesystem::path& run_dir
   };
   Series checked_yy{"SPH at the checked depths", {}, {}, "points"}, checked_xx = checked_yy;
   for (double ratio : kDepthsOverHalfWidth) {
-    const auto [yy, xx] = at_depth(line, ratio * kHalfWidth, spacing);
-    checked_yy.x.push_back(ratio * kHalfWidth);
+    const auto [yy, xx] = at_depth(line, ratio * half_width, spacing);
+    checked_yy.x.push_back(ratio * half_width);
     checked_yy.y.push_back(1e-3 * yy);
-    checked_xx.x.push_back(ratio * kHalfWidth);
+    checked_xx.x.push_back(ratio * half_width);
     checked_xx.y.push_back(1e-3 * xx);
   }
   // Each component against the half-plane Flamant curve and the strip on the box (the check).
@@ -139,16 +149,16 @@ void report_strip(ValidationReport& report, const std::filesystem::path& run_dir
          {{"SPH, centre-line nodes", line.depth, kpa(measured), "line"},
           std::move(checked),
           sample_curve(fmt::format("Flamant, half-plane: {}", formula), from, bottom, 500,
-                       [vertical](double z) {
+                       [load, half_width, vertical](double z) {
                          return 1e-3 * (vertical
                                             ? references::flamant_centre_line_vertical_stress(
-                                                  kLoad, kHalfWidth, z)
+                                                  load, half_width, z)
                                             : references::flamant_centre_line_horizontal_stress(
-                                                  kLoad, kHalfWidth, z));
+                                                  load, half_width, z));
                        }),
           sample_curve("Flamant strip on the smooth-walled box (checked)", from, bottom, 200,
-                       [&box, vertical](double z) {
-                         const references::StripStress s = reference_at(box, z);
+                       [&strip, vertical](double z) {
+                         const references::StripStress s = reference_at(strip, z);
                          return 1e-3 * (vertical ? s.sigma_z : s.sigma_x);
                        })}});
   };
@@ -160,12 +170,13 @@ void report_strip(ValidationReport& report, const std::filesystem::path& run_dir
                 "(q/pi)(alpha - sin alpha)", false);
   // The exact static profile on the box, and the odd-even ratio it gives on these nodes (the
   // level of the check for a converged, pattern-free solution).
-  const NodeLine exact{settlement.x, references::strip_on_smooth_layer_surface_settlement(
-                                         kLoad, kHalfWidth, box, kYoungModulus, settlement.x)};
+  const NodeLine exact{settlement.x,
+                       references::strip_on_smooth_layer_surface_settlement(
+                           load, half_width, strip.box, strip.young_modulus, settlement.x)};
   Figure profile = settlement_figure(
-      "surface_settlement", settlement, kHalfWidth,
+      "surface_settlement", settlement, half_width,
       fmt::format("Surface settlement at the end (odd-even ratio {:.3f}, exact profile {:.3f})",
-                  settlement_ratio, settlement_oddeven_ratio(exact, kHalfWidth)));
+                  settlement_ratio, settlement_oddeven_ratio(exact, half_width)));
   Series reference{"exact static settlement of the strip on the box", exact.x, {}, "dashed"};
   for (double value : exact.value)
     reference.y.push_back(1e3 * value);
@@ -173,7 +184,7 @@ void report_strip(ValidationReport& report, const std::filesystem::path& run_dir
   report.add_figure(std::move(profile));
   report.add_figure(speed_figure("max_velocity", speeds, 0.0, 1e-3));
   report.add_picture({"velocity", run_directory.string(), "velocity", -1, -1.0, 0.0,
-                      fmt::format("Velocity magnitude at the end (load held since t = 0.5 s, "
+                      fmt::format("Velocity magnitude at the end (load held after its ramp, "
                                   "damped): largest {:.3g} m/s, {:.2g} of its peak.",
                                   speeds.speed.empty() ? 0.0 : speeds.speed.back(), residual)});
   report.add_picture({"sigma_yy", run_directory.string(), "stress", 4, -1.0, 0.0,
@@ -189,44 +200,47 @@ std::vector<CheckResult> validate_strip_footing_elastic(const ValidationContext&
     overrides.push_back({"time.end", fmt::format("{:g}", kQuickEnd)});
   }
   CaseDescription description = load_bundled_case(context, "strip-footing-elastic", overrides);
-  if (context.quick)
-    description.geometry.shapes.at(0).vertices = {{0.0, kSurface - kQuickBox, 0.0},
-                                                  {kQuickBox, kSurface, 0.0}};
-  const references::SmoothLayer box = box_of(description);
+  if (context.quick) {
+    const double surface = rectangle_shape(description, 0).y_max;
+    description.geometry.shapes.at(0).vertices = {{0.0, surface - kQuickBox, 0.0},
+                                                  {kQuickBox, surface, 0.0}};
+  }
+  const Strip strip = strip_of(description);
+  const double load = strip.load, half_width = strip.half_width;
   const double spacing = description.geometry.spacing;
   CentreLine line;
   NodeLine settlement;
   SpeedRecorder speeds(description.output.probe_interval);
-  const std::filesystem::path run_directory =
-      run_for_validation(context, description, context.quick ? "quick" : "full",
-                         [&](const Simulation& simulation) {
-                           line = centre_line(simulation);
-                           settlement = surface_settlement(simulation, kSurface, 0.0, box.width);
-                         },
-                         {&speeds.observer()});
+  const std::filesystem::path run_directory = run_for_validation(
+      context, description, context.quick ? "quick" : "full",
+      [&](const Simulation& simulation) {
+        line = centre_line(simulation, strip.surface);
+        settlement = surface_settlement(simulation, strip.surface, 0.0, strip.box.width);
+      },
+      {&speeds.observer()});
 
   // Against the box solution (the check) and, for the description, against the bare Flamant strip
   // of the half-plane.
   double stress_error = 0.0, flamant_error = 0.0;
   for (double ratio : kDepthsOverHalfWidth) {
-    const double depth = ratio * kHalfWidth;
+    const double depth = ratio * half_width;
     const auto [yy, xx] = at_depth(line, depth, spacing);
-    const references::StripStress reference = reference_at(box, depth);
+    const references::StripStress reference = reference_at(strip, depth);
     const double error =
         std::max(std::abs(yy - reference.sigma_z), std::abs(xx - reference.sigma_x));
     const double flamant = std::max(
-        std::abs(yy - references::flamant_centre_line_vertical_stress(kLoad, kHalfWidth, depth)),
-        std::abs(xx - references::flamant_centre_line_horizontal_stress(kLoad, kHalfWidth, depth)));
+        std::abs(yy - references::flamant_centre_line_vertical_stress(load, half_width, depth)),
+        std::abs(xx - references::flamant_centre_line_horizontal_stress(load, half_width, depth)));
     // A missing node (NaN) fails the check.
     stress_error = std::isnan(error) || std::isnan(stress_error)
                        ? std::numeric_limits<double>::quiet_NaN()
-                       : std::max(stress_error, error / kLoad);
-    flamant_error = std::max(flamant_error, flamant / kLoad);
+                       : std::max(stress_error, error / load);
+    flamant_error = std::max(flamant_error, flamant / load);
   }
   const double residual = residual_velocity_ratio(speeds.history());
-  const double settlement_ratio = settlement_oddeven_ratio(settlement, kHalfWidth);
+  const double settlement_ratio = settlement_oddeven_ratio(settlement, half_width);
   if (context.report)
-    report_strip(*context.report, run_directory, box, line, settlement, speeds.history(), spacing,
+    report_strip(*context.report, run_directory, strip, line, settlement, speeds.history(), spacing,
                  stress_error, flamant_error, residual, settlement_ratio);
   // 3 % of q: the reference includes the walls of the box; what is left is the load edge resolved
   // to dx/2 and the lattice (b/dx = 8, 4 in the quick variant).

@@ -30,9 +30,7 @@
 namespace rktsph {
 
 namespace {
-constexpr double kQuickSpacing = 0.05;    // 21 x 41 nodes, as the dry quick variant
-constexpr double kWeakZoneCentre = 0.05;  // the weak zone is [0, 0.1] x [0, 0.1]
-constexpr double kWeakZoneHalfDiagonal = 0.0707;
+constexpr double kQuickSpacing = 0.05;  // 21 x 41 nodes, as the dry quick variant
 // The lattice rows whose band centre the report draws: between the weak zone and where the band
 // leaves the right side [m].
 constexpr double kRidgeLow = 0.15, kRidgeHigh = 0.85;
@@ -40,7 +38,7 @@ constexpr double kRidgeLow = 0.15, kRidgeHigh = 0.85;
 /// The band's centre line against the 45-degree line from the weak zone, p_w in and out of the
 /// band against time, and pictures of eps_vp and p_w.
 void report_localization(ValidationReport& report, const std::filesystem::path& run_directory,
-                         const BandMeasurement& band,
+                         const WeakZone& weak, const BandMeasurement& band,
                          const std::vector<std::pair<double, double>>& centres,
                          const std::array<double, 3>& largest_pressure, double spacing) {
   const double reference_angle = references::j2_plane_strain_band_angle_deg();
@@ -53,7 +51,7 @@ void report_localization(ValidationReport& report, const std::filesystem::path& 
         line_from_vertical(
             fmt::format("{:g} degrees from the vertical through the weak zone centre",
                         reference_angle),
-            kWeakZoneCentre, kWeakZoneCentre, reference_angle, kRidgeLow, kRidgeHigh, "dashed")}});
+            weak.centre_x(), weak.centre_y(), reference_angle, kRidgeLow, kRidgeHigh, "dashed")}});
 
   const ProbeTable probes = ProbeTable::read(run_directory / "probes.csv");
   const double end = probes.time().back();
@@ -82,7 +80,7 @@ void report_localization(ValidationReport& report, const std::filesystem::path& 
       "degrees, {:.3f} m from the weak zone centre. Pore pressure in the band minus above it "
       "at the end: {:.1f} kPa (a result, not a check).",
       spacing, reference_angle, band.primary.angle_deg,
-      distance_to_band(band.primary, kWeakZoneCentre, kWeakZoneCentre), change / 1000.0));
+      distance_to_band(band.primary, weak.centre_x(), weak.centre_y()), change / 1000.0));
   report.add_picture({"eps_vp", run_directory.string(), "eps_vp", -1, -1.0, 0.0,
                       "Equivalent viscoplastic strain at the end: the shear band from the weak "
                       "corner (lower left) across the sample."});
@@ -99,6 +97,7 @@ std::vector<CheckResult> validate_vpw_localization(const ValidationContext& cont
   std::vector<CaseOverride> overrides;
   if (context.quick) overrides.push_back({"geometry.spacing", std::to_string(kQuickSpacing)});
   const CaseDescription description = load_bundled_case(context, "vpw-localization", overrides);
+  const WeakZone weak = read_weak_zone(description);
 
   std::optional<BandMeasurement> band;
   std::vector<std::pair<double, double>> centres;
@@ -123,14 +122,14 @@ std::vector<CheckResult> validate_vpw_localization(const ValidationContext& cont
   if (!band) throw RunError("vpw-localization: the band was not measured");
 
   if (context.report)
-    report_localization(*context.report, directory, *band, centres, largest_pressure,
+    report_localization(*context.report, directory, weak, *band, centres, largest_pressure,
                         description.geometry.spacing);
   return {
       check_within("shear_band_angle", band->primary.angle_deg,
                    references::j2_plane_strain_band_angle_deg(), 3.0, "deg"),
       check_at_most("band_distance_to_weak_zone",
-                    distance_to_band(band->primary, kWeakZoneCentre, kWeakZoneCentre), 0.0,
-                    kWeakZoneHalfDiagonal + description.geometry.spacing, "m"),
+                    distance_to_band(band->primary, weak.centre_x(), weak.centre_y()), 0.0,
+                    weak.half_diagonal() + description.geometry.spacing, "m"),
   };
 }
 

@@ -21,6 +21,7 @@
 
 #include <fmt/format.h>
 
+#include "rktsph/core/error.hpp"
 #include "rktsph/validation/references/limit_loads.hpp"
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
@@ -29,15 +30,6 @@ namespace rktsph {
 
 namespace {
 
-// As in cases/vpw-strip-footing-elastic/case.yaml.
-constexpr double kLoad = 50000.0;   // q [Pa]
-constexpr double kHalfWidth = 2.0;  // b [m]
-constexpr double kSurface = 24.0;   // y of the loaded surface [m]
-constexpr double kWidth = 24.0;     // x of the far side [m]
-constexpr double kYoungModulus = 1.0e7;
-constexpr double kPoissonRatio = 0.3;
-constexpr double kPorosity = 0.3;
-constexpr double kFluidBulkModulus = 2.2e9;
 constexpr double kDepthsOverHalfWidth[] = {0.5, 1.0, 2.0};
 // No separate quick variant: the full run takes about 25 s, and coarser or shorter runs do not
 // resolve the edge of the load for the 10 % and 1 % tolerances (centre-line error and checkerboard
@@ -48,9 +40,10 @@ LatticeField pore_pressure_on_lattice(const Simulation& simulation) {
   return lattice_field(simulation, simulation.model().pore_pressure_field());
 }
 
-double centre_line_value(const LatticeField& field, double depth) {
+double centre_line_value(const LatticeField& field, const StripLoad& strip, double depth) {
   const int i = static_cast<int>(std::lround(-field.origin_x / field.spacing));
-  const int j = static_cast<int>(std::lround((kSurface - depth - field.origin_y) / field.spacing));
+  const int j =
+      static_cast<int>(std::lround((strip.row.surface - depth - field.origin_y) / field.spacing));
   return field.at(i, j);
 }
 
@@ -59,29 +52,21 @@ double centre_line_value(const LatticeField& field, double depth) {
 // undrained field is singular at the footing edge itself, so nodes within max(b/2, 3 dx) of it are
 // left out (docs/theory.md §8.10 excludes the same zone for p), and so are nodes without a full
 // 3x3 neighbourhood.
-double pore_pressure_checkerboard(const LatticeField& field) {
-  const double exclusion = std::max(0.5 * kHalfWidth, 3.0 * field.spacing);
-  return checkerboard_amplitude(field, [exclusion](double x, double y) {
-    return std::hypot(x - kHalfWidth, y - kSurface) < exclusion;
+double pore_pressure_checkerboard(const LatticeField& field, const StripLoad& strip) {
+  const double exclusion = std::max(0.5 * strip.half_width, 3.0 * field.spacing);
+  return checkerboard_amplitude(field, [exclusion, &strip](double x, double y) {
+    return std::hypot(x - strip.half_width, y - strip.row.surface) < exclusion;
   });
-}
-
-/// The ramped traction y on the footing group (-q(t)).
-const TimeFunction* footing_traction(const CaseDescription& description) {
-  for (const BoundaryConditionSpec& condition : description.boundary_conditions)
-    if (condition.group == "footing" && condition.kind == BoundaryConditionSpec::Kind::Traction &&
-        condition.traction[1])
-      return &*condition.traction[1];
-  return nullptr;
 }
 
 /// Centre-line p_w against depth and the histories at z = b and 2b, each against the undrained
 /// half-plane value, and a picture of p_w.
-void report_strip_footing(ValidationReport& report, const CaseDescription& description,
+void report_strip_footing(ValidationReport& report, const StripLoad& strip,
                           const std::filesystem::path& run_directory, const LatticeField& field,
                           double factor, double centre_line_error, double checkerboard) {
-  const auto reference = [factor](double load, double depth) {
-    return factor * references::strip_centre_line_pore_pressure(load, kHalfWidth, depth);
+  const double q = strip.pressure, b = strip.half_width, surface = strip.row.surface;
+  const auto reference = [factor, b](double load, double depth) {
+    return factor * references::strip_centre_line_pore_pressure(load, b, depth);
   };
   // Every node of the centre line x = 0, from the surface down.
   Series centre_line{"SPH, centre-line nodes", {}, {}, "points"};
@@ -89,30 +74,30 @@ void report_strip_footing(ValidationReport& report, const CaseDescription& descr
   for (int j = field.rows - 1; j >= 0; --j) {
     const double value = field.at(column, j);
     if (std::isnan(value)) continue;
-    centre_line.x.push_back(kSurface - (field.origin_y + j * field.spacing));
+    centre_line.x.push_back(surface - (field.origin_y + j * field.spacing));
     centre_line.y.push_back(1e-3 * value);
   }
   Series checked{"SPH at the checked depths z/b = 0.5, 1, 2", {}, {}, "points"};
   std::string errors;
   for (double depth_ratio : kDepthsOverHalfWidth) {
-    const double depth = depth_ratio * kHalfWidth;
-    const double value = centre_line_value(field, depth);
+    const double depth = depth_ratio * b;
+    const double value = centre_line_value(field, strip, depth);
     checked.x.push_back(depth);
     checked.y.push_back(1e-3 * value);
     errors += fmt::format("{}{:.1f} % at z/b = {:g}", errors.empty() ? "" : ", ",
-                          100.0 * relative_error(value, reference(kLoad, depth)), depth_ratio);
+                          100.0 * relative_error(value, reference(q, depth)), depth_ratio);
   }
-  const double bottom = centre_line.x.empty() ? kSurface : centre_line.x.back();
+  const double bottom = centre_line.x.empty() ? surface : centre_line.x.back();
   report.add_figure({"centreline_pressure",
                      "Pore pressure on the centre line under the strip load, end of the run",
                      "depth below the loaded surface z [m]",
                      "excess pore pressure p_w [kPa]",
                      {std::move(centre_line), std::move(checked),
                       sample_curve("undrained half-plane F (2q/pi) atan(b/z)", 0.0, bottom, 2000,
-                                   [&](double depth) { return 1e-3 * reference(kLoad, depth); })}});
+                                   [&](double depth) { return 1e-3 * reference(q, depth); })}});
 
   const ProbeTable probes = ProbeTable::read(run_directory / "probes.csv");
-  const TimeFunction* traction = footing_traction(description);
+  const TimeFunction* traction = strip.history;
   const double end = probes.time().back();
   Figure histories{"probe_pressure",
                    "Pore pressure on the centre line at z = b and z = 2b",
@@ -132,7 +117,7 @@ void report_strip_footing(ValidationReport& report, const CaseDescription& descr
       histories.series.push_back(
           sample_curve(fmt::format("undrained, z = {:g} b, under the applied q(t)", depth_ratio),
                        0.0, end, 2000, [&, depth = depth_ratio](double t) {
-                         return 1e-3 * reference(-(*traction)(t), depth * kHalfWidth);
+                         return 1e-3 * reference(-(*traction)(t), depth * b);
                        }));
   }
   report.add_figure(std::move(histories));
@@ -145,7 +130,7 @@ void report_strip_footing(ValidationReport& report, const CaseDescription& descr
       "(2q/pi) atan(b/z), F = {:.4f} the compressible-fluid factor. Measured error against it: "
       "{} (largest {:.1f} %); checkerboard ratio {:.4f}. The centre-line check is a known open "
       "problem.",
-      1e-3 * kLoad, kHalfWidth, traction ? traction->duration : 0.0, field.spacing, factor, errors,
+      1e-3 * q, b, traction ? traction->duration : 0.0, field.spacing, factor, errors,
       100.0 * centre_line_error, checkerboard));
   double largest = 0.0, largest_x = 0.0, largest_depth = 0.0;
   for (int j = 0; j < field.rows; ++j)
@@ -154,15 +139,14 @@ void report_strip_footing(ValidationReport& report, const CaseDescription& descr
           !std::isnan(value) && std::abs(value) > std::abs(largest)) {
         largest = value;
         largest_x = field.origin_x + i * field.spacing;
-        largest_depth = kSurface - (field.origin_y + j * field.spacing);
+        largest_depth = surface - (field.origin_y + j * field.spacing);
       }
   report.add_picture(
       {"pore_pressure", run_directory.string(), "pore_pressure", -1, -1.0, 0.0,
        fmt::format("Excess pore pressure at the end of the run; the strip load covers 0 < x < b = "
                    "{:g} m at the top left, the surface is drained. Largest |p_w|: {:.0f} kPa "
                    "({:.1f} q) at the node x = {:g} m, z = {:g} m.",
-                   kHalfWidth, 1e-3 * largest, std::abs(largest) / kLoad, largest_x,
-                   largest_depth)});
+                   b, 1e-3 * largest, std::abs(largest) / q, largest_x, largest_depth)});
 }
 
 }  // namespace
@@ -171,41 +155,45 @@ std::vector<CheckResult> validate_vpw_strip_footing_elastic(const ValidationCont
   std::vector<CaseOverride> overrides = {{"output.interval", "0"}};
   const CaseDescription description =
       load_bundled_case(context, "vpw-strip-footing-elastic", overrides);
+  const StripLoad strip = read_strip_load(description);
+  if (!description.pore_fluid) throw RunError("case vpw-strip-footing-elastic: no pore_fluid");
+  const double factor = references::strip_undrained_compressibility_factor(
+      material_parameter(description, "soil", "young_modulus"),
+      material_parameter(description, "soil", "poisson_ratio"), description.pore_fluid->porosity,
+      description.pore_fluid->bulk_modulus);
   LatticeField field;
   NodeLine settlement;
   SpeedRecorder speeds(description.output.probe_interval);
-  const std::filesystem::path run_directory =
-      run_for_validation(context, description, "full",
-                         [&](const Simulation& simulation) {
-                           field = pore_pressure_on_lattice(simulation);
-                           settlement = surface_settlement(simulation, kSurface, 0.0, kWidth);
-                         },
-                         {&speeds.observer()});
+  const std::filesystem::path run_directory = run_for_validation(
+      context, description, "full",
+      [&](const Simulation& simulation) {
+        field = pore_pressure_on_lattice(simulation);
+        settlement = surface_settlement(simulation, strip.row.surface, 0.0, strip.row.body.x_max);
+      },
+      {&speeds.observer()});
 
-  const double factor = references::strip_undrained_compressibility_factor(
-      kYoungModulus, kPoissonRatio, kPorosity, kFluidBulkModulus);
   double centre_line_error = 0.0;
   for (double depth_ratio : kDepthsOverHalfWidth) {
-    const double depth = depth_ratio * kHalfWidth;
-    const double reference =
-        factor * references::strip_centre_line_pore_pressure(kLoad, kHalfWidth, depth);
-    centre_line_error =
-        std::max(centre_line_error, relative_error(centre_line_value(field, depth), reference));
+    const double depth = depth_ratio * strip.half_width;
+    const double reference = factor * references::strip_centre_line_pore_pressure(
+                                          strip.pressure, strip.half_width, depth);
+    centre_line_error = std::max(centre_line_error,
+                                 relative_error(centre_line_value(field, strip, depth), reference));
   }
-  const double checkerboard = pore_pressure_checkerboard(field) / max_abs(field);
+  const double checkerboard = pore_pressure_checkerboard(field, strip) / max_abs(field);
   const double residual = residual_velocity_ratio(speeds.history());
-  const double settlement_ratio = settlement_oddeven_ratio(settlement, kHalfWidth);
+  const double settlement_ratio = settlement_oddeven_ratio(settlement, strip.half_width);
   if (context.report) {
-    report_strip_footing(*context.report, description, run_directory, field, factor,
-                         centre_line_error, checkerboard);
+    report_strip_footing(*context.report, strip, run_directory, field, factor, centre_line_error,
+                         checkerboard);
     context.report->add_figure(settlement_figure(
-        "surface_settlement", settlement, kHalfWidth,
+        "surface_settlement", settlement, strip.half_width,
         fmt::format("Surface settlement at the end (odd-even ratio over 0 <= x <= 5b: {:.4f})",
                     settlement_ratio)));
     context.report->add_figure(speed_figure("max_velocity", speeds.history(), 0.0, 1e-3));
     context.report->add_picture(
         {"velocity", run_directory.string(), "velocity", -1, -1.0, 0.0,
-         fmt::format("Velocity magnitude at the end (load held since t = 0.5 s, damped): largest "
+         fmt::format("Velocity magnitude at the end (load held after its ramp, damped): largest "
                      "{:.3g} m/s, {:.2g} of its peak during the run.",
                      speeds.history().speed.back(), residual)});
   }

@@ -42,31 +42,27 @@ namespace rktsph {
 
 namespace {
 
-// As in cases/vpw-vertical-cut-footing/case.yaml.
-constexpr double kYieldStress = 1.0e5;
-constexpr double kFootingWidth = 2.0;
-constexpr double kFootingLeft = 6.0;  // inner footing edge; the crest is at x = 8 m, y = 6 m
-constexpr double kCrestY = 6.0;
-constexpr double kFace = kFootingLeft + kFootingWidth;  // the cut face x = 8 m
-// The band is measured in the region the 45° wedge can reach: below the footing and up to 2B
-// under the crest, which leaves out the far field where eps_vp stays zero.
-constexpr double kBandRegionDepth = 2.0 * kFootingWidth;
 // Quick variant: B/dx = 8 instead of 16 (at B/dx = 4 the band measures 61°, not resolved).
 constexpr double kQuickSpacing = 0.25;
-// Lowest row of the report's band figure: where the 45° line from the footing edge meets the face.
-constexpr double kRidgeLow = kCrestY - kFootingWidth;
 // The plateau and the band are read up to kPushEnd, as when the run ended there; the footing stops
-// from kHoldStart on (case.yaml: the velocity table and the damping start), after the step that
+// from the hold's start on (the case's velocity table and damping start), after the step that
 // reaches kPushEnd, so that everything up to that step is as before. The plateau is the last fifth
 // of the push, sampled at the field-output interval kPlateauSampling.
 constexpr double kPushEnd = 5.0;
-constexpr double kHoldStart = 5.05;
 constexpr double kPlateauStart = 0.8 * kPushEnd;
 constexpr double kPlateauSampling = 0.5;
 
-BandMeasurement measure_wedge_band(const Simulation& simulation) {
+// The band is measured in the region the 45° wedge can reach: below the footing and up to 2B
+// under the crest, which leaves out the far field where eps_vp stays zero.
+BandMeasurement measure_wedge_band(const Simulation& simulation, const FootingRow& footing) {
   return measure_band_in_region(simulation, "vpw-vertical-cut-footing",
-                                kFootingLeft - kFootingWidth, kCrestY - kBandRegionDepth);
+                                footing.left - footing.length(),
+                                footing.surface - 2.0 * footing.length());
+}
+
+// Lowest row of the report's band figure: where the 45° line from the footing edge meets the face.
+double ridge_low(const FootingRow& footing) {
+  return footing.surface - footing.length();
 }
 
 /// What the report shows of the final state: the band centre on each lattice row of the wedge
@@ -77,14 +73,15 @@ struct FinalState {
   double largest_pressure = 0.0, largest_x = 0.0, largest_y = 0.0;
 };
 
-FinalState final_state(const Simulation& simulation, double threshold) {
+FinalState final_state(const Simulation& simulation, const FootingRow& footing, double threshold) {
   const std::span<const double> strain =
       internal_variable(simulation, "eps_vp", "vpw-vertical-cut-footing");
   const NodeSets& nodes = simulation.nodes();
   FinalState state;
   // The rows below the crest row.
-  state.centres = band_row_centres(nodes, strain, threshold, kRidgeLow, kCrestY - nodes.spacing,
-                                   kFootingLeft - kFootingWidth);
+  state.centres =
+      band_row_centres(nodes, strain, threshold, ridge_low(footing),
+                       footing.surface - nodes.spacing, footing.left - footing.length());
   const int pore = simulation.model().pore_pressure_field();
   for (std::size_t k = 0; k < nodes.sph_nodes.size(); ++k) {
     const double value = simulation.state().fields(pore, k);
@@ -99,9 +96,10 @@ FinalState final_state(const Simulation& simulation, double threshold) {
 
 /// Footing pressure against settlement and time with the 2c plateau, the band's centre line
 /// against the 45-degree line from the footing edge, and pictures of eps_vp and p_w.
-void report_vertical_cut(ValidationReport& report, const FootingHistory& history, double spacing,
-                         double limit, double plateau, double plateau_start,
-                         const BandMeasurement& band, const FinalState& state) {
+void report_vertical_cut(ValidationReport& report, const FootingRow& footing,
+                         const FootingHistory& history, double spacing, double limit,
+                         double plateau, double plateau_start, const BandMeasurement& band,
+                         const FinalState& state) {
   const auto& time = history.time;
   Series load_settlement{"SPH, mean total vertical stress under the footing", {}, {}, "line"};
   Series load_history{"SPH, mean total vertical stress under the footing", time, {}, "line"};
@@ -131,22 +129,24 @@ void report_vertical_cut(ValidationReport& report, const FootingHistory& history
   const double reference_angle = references::j2_plane_strain_band_angle_deg();
   const BandLine& line = band.primary;
   // The fitted ridge (direction_deg counter-clockwise from the vertical) is drawn inside the body
-  // only: down to where it meets the face x = kFace; the reference runs down from the inner
+  // only: down to where it meets the cut face; the reference runs down from the inner
   // footing edge towards the face.
   const double fitted_slope = -std::tan(line.direction_deg * std::numbers::pi / 180.0);
-  const double top = kCrestY - spacing;
-  double fitted_low = kRidgeLow;
+  const double top = footing.surface - spacing;
+  double fitted_low = ridge_low(footing);
   if (fitted_slope < 0.0)
-    fitted_low = std::max(fitted_low, line.centre_y + (kFace - line.centre_x) / fitted_slope);
+    fitted_low =
+        std::max(fitted_low, line.centre_y + (footing.right - line.centre_x) / fitted_slope);
   report.add_figure(
       {"band_fit",
        "Wedge band at the end of the push: centre line against the reference",
-       "x [m] (cut face at x = 8 m)",
-       "y [m] (crest at y = 6 m; axes not to scale)",
+       fmt::format("x [m] (cut face at x = {:g} m)", footing.right),
+       fmt::format("y [m] (crest at y = {:g} m; axes not to scale)", footing.surface),
        {band_centre_series(state.centres), band_ridge_series(line, fitted_low, top),
         line_from_vertical(fmt::format("{:g} degrees from the vertical from the inner footing edge",
                                        reference_angle),
-                           kFootingLeft, kCrestY, -reference_angle, kRidgeLow, top, "dashed")}});
+                           footing.left, footing.surface, -reference_angle, ridge_low(footing), top,
+                           "dashed")}});
 
   report.describe(fmt::format(
       "Thesis 6.4.6: a smooth rigid strip footing B = {:g} m flush with the crest of a vertical "
@@ -159,11 +159,13 @@ void report_vertical_cut(ValidationReport& report, const FootingHistory& history
       "{:g} <= t <= {:g} s, the checked value): {:.1f} kPa. Band (ridge fit of eps_vp at the end "
       "of the push): {:.1f} degrees from the vertical, reference {:g}. During the hold the body "
       "must come to rest.",
-      kFootingWidth, spacing, kPushEnd, 1e-3 * limit, plateau_start, kPushEnd, 1e-3 * plateau,
+      footing.length(), spacing, kPushEnd, 1e-3 * limit, plateau_start, kPushEnd, 1e-3 * plateau,
       line.angle_deg, reference_angle));
   report.add_picture({"eps_vp", history.directory.string(), "eps_vp", -1, kPushEnd, 0.0,
-                      "Equivalent viscoplastic strain at the end of the push: the band from the "
-                      "inner footing edge (x = 6 m, top) down to the cut face (x = 8 m)."});
+                      fmt::format("Equivalent viscoplastic strain at the end of the push: the band "
+                                  "from the inner footing edge (x = {:g} m, top) down to the cut "
+                                  "face (x = {:g} m).",
+                                  footing.left, footing.right)});
   report.add_picture(
       {"pore_pressure", history.directory.string(), "pore_pressure", -1, kPushEnd, 0.0,
        fmt::format("Excess pore pressure at the end of the push (drained top and face). Largest "
@@ -182,7 +184,14 @@ std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationConte
   const CaseDescription description =
       load_bundled_case(context, "vpw-vertical-cut-footing", overrides);
   const double spacing = description.geometry.spacing;
-  const int footing_nodes = static_cast<int>(std::lround(kFootingWidth / spacing)) + 1;
+  const FootingRow footing = footing_row(description, FootingPlace::Crest);
+  const int footing_nodes = static_cast<int>(std::lround(footing.length() / spacing)) + 1;
+  // The footing stops, and the damping acts, from the hold's start on.
+  if (!description.damping || !(description.damping->start > kPushEnd))
+    throw RunError(fmt::format(
+        "vpw-vertical-cut-footing: the mass damping must start after the push ends at {:g} s",
+        kPushEnd));
+  const double hold_start = description.damping->start;
 
   // The state at the end of the push (band, report) and the contact pressure on the plateau,
   // sampled while the run goes; the largest velocity at every probe output.
@@ -196,12 +205,12 @@ std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationConte
     // The sampler takes the first state at or after each multiple of kPlateauSampling.
     if (time < kPlateauStart - 0.5 * dt || time >= kPushEnd + dt) return;
     const NodeLine pressure =
-        contact_pressure(simulation, kCrestY, kFootingLeft, kFootingLeft + kFootingWidth);
+        contact_pressure(simulation, footing.surface, footing.left, footing.right);
     contact_ratio = std::max(contact_ratio, contact_pressure_oddeven_ratio(pressure));
     ++contact_samples;
     if (time >= kPushEnd - 0.5 * dt) {
-      band = measure_wedge_band(simulation);
-      if (context.report) state = final_state(simulation, band->threshold);
+      band = measure_wedge_band(simulation, footing);
+      if (context.report) state = final_state(simulation, footing, band->threshold);
       contact = pressure;
     }
   });
@@ -229,12 +238,13 @@ std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationConte
   }
   if (samples == 0) throw RunError("vpw-vertical-cut-footing: no probe sample on the plateau");
   plateau /= samples;
-  const double limit = references::footing_on_cut_limit_pressure(
-      references::von_mises_plane_strain_cohesion(kYieldStress));
-  const double residual = residual_velocity_ratio(speeds.history(), kHoldStart);
+  const double limit =
+      references::footing_on_cut_limit_pressure(references::von_mises_plane_strain_cohesion(
+          material_parameter(description, "soil", "yield_stress")));
+  const double residual = residual_velocity_ratio(speeds.history(), hold_start);
   if (context.report) {
-    report_vertical_cut(*context.report, history, spacing, limit, plateau, kPlateauStart, *band,
-                        state);
+    report_vertical_cut(*context.report, footing, history, spacing, limit, plateau, kPlateauStart,
+                        *band, state);
     Series measured{"SPH footing nodes", contact.x, {}, "line"};
     for (double p : contact.value)
       measured.y.push_back(1e-3 * p);
@@ -243,18 +253,18 @@ std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationConte
          fmt::format("Contact pressure node by node at the end of the push, t = {:g} s (odd-even "
                      "ratio, largest on the plateau: {:.4f})",
                      kPushEnd, contact_ratio),
-         "x [m] (footing 6 <= x <= 8 m, crest at x = 8 m)",
+         fmt::format("x [m] (footing {:g} <= x <= {:g} m, crest at x = {:g} m)", footing.left,
+                     footing.right, footing.right),
          "-sigma_yy (total) [kPa]",
-         {std::move(measured),
-          sample_curve("2 c_u = 2 Y / sqrt(3)", kFootingLeft, kFootingLeft + kFootingWidth, 2,
-                       [&](double) { return 1e-3 * limit; })}});
-    context.report->add_figure(speed_figure("max_velocity", speeds.history(), kHoldStart, 1e-3));
+         {std::move(measured), sample_curve("2 c_u = 2 Y / sqrt(3)", footing.left, footing.right, 2,
+                                            [&](double) { return 1e-3 * limit; })}});
+    context.report->add_figure(speed_figure("max_velocity", speeds.history(), hold_start, 1e-3));
     context.report->add_picture(
         {"velocity", run_directory.string(), "velocity", -1, -1.0, 0.0,
          fmt::format("Velocity magnitude at the end of the hold (footing stopped from t = {:g} s, "
                      "damped from then on): largest {:.3g} m/s, {:.2g} of its peak during the "
                      "hold.",
-                     kHoldStart, speeds.history().speed.back(), residual)});
+                     hold_start, speeds.history().speed.back(), residual)});
   }
 
   // 10 % (5 % in docs/theory.md §8.7 for a converged dry run): the collapse load of a Perzyna
