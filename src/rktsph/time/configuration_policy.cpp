@@ -9,7 +9,10 @@
 namespace rktsph {
 
 MovingConfiguration::MovingConfiguration(const PhysicsModel& model, const NodeSets& reference)
-    : model_(model), reference_(reference), motion_(reference), predicted_nodes_(reference.sph_nodes) {}
+    : model_(model),
+      reference_(reference),
+      motion_(reference),
+      predicted_nodes_(reference.sph_nodes) {}
 
 void MovingConfiguration::rotate_stress(const FieldArray& gradient,
                                         std::span<const int> velocity_gradient, double interval,
@@ -18,8 +21,9 @@ void MovingConfiguration::rotate_stress(const FieldArray& gradient,
 }
 
 void MovingConfiguration::scale_momentum_rate(FieldArray& rate, std::size_t count,
-                                       const double* current_volume, const double* reference_volume,
-                                       const std::int32_t* row_point) const {
+                                              const double* current_volume,
+                                              const double* reference_volume,
+                                              const std::int32_t* row_point) const {
   for (int a = 0; a < model_.dimension(); ++a) {
     double* r = rate.field(model_.velocity_field(a));
     for (std::size_t i = 0; i < count; ++i) {
@@ -30,8 +34,8 @@ void MovingConfiguration::scale_momentum_rate(FieldArray& rate, std::size_t coun
 }
 
 void MovingConfiguration::to_midpoint_configuration(FieldArray& gradient, int fields,
-                                             std::span<const int> velocity_gradient, double dt,
-                                             std::size_t count) const {
+                                                    std::span<const int> velocity_gradient,
+                                                    double dt, std::size_t count) const {
   const int d = model_.dimension();
   const auto n = static_cast<std::int64_t>(count);
 #pragma omp parallel for schedule(static) if (n > kParallelThreshold)

@@ -114,8 +114,8 @@ struct FootingRow {
 FootingRow footing_row(const CaseDescription& description, FootingPlace place);
 
 /// The flexible strip load of a half model about x = 0 (the elastic strip footing cases): the
-/// traction -q(t) on the row `footing` from the symmetry plane and -q(t)/2 on the point
-/// `footing_edge` at x = b, so that the nodal load sums to q b. RunError otherwise.
+/// traction -q(t) on the row `footing` from the symmetry plane to x = b, which acts on the facets
+/// within it, so that the load sums to q b (docs/theory.md §5.1). RunError otherwise.
 struct StripLoad {
   FootingRow row;
   double pressure = 0.0;                  // q, the held load [Pa]
