@@ -53,7 +53,7 @@ TEST(BoundaryConditions, FacesMirrorsAndProjections) {
   EXPECT_EQ(std::count(surface_nodes.begin(), surface_nodes.end(), node_at(simulation, 3, 0)), 0);
   // The free right face is projected along x; the fixed left face is not (its stress is a
   // reaction); the fixed-free corner at the top left is projected along y (its top face is free).
-  const Vector3 x{1.0, 0.0, 0.0}, y{0.0, 1.0, 0.0};
+  const Vec3 x{1.0, 0.0, 0.0}, y{0.0, 1.0, 0.0};
   const SurfaceNormals right = projected_normals(conditions, node_at(simulation, 6, 2));
   ASSERT_EQ(right.count, 1);
   EXPECT_EQ(right.normal[0], x);

@@ -31,7 +31,7 @@ TEST(PerimeterNormals, FollowAnAffineMapOfTheBodyExactly) {
   perimeter.update(moved, surface);
   const double det = f[0] * f[3] - f[1] * f[2];
   for (std::size_t k = 0; k < reference.facet_count(); ++k) {
-    const Vector3 n = reference.facet_normal(static_cast<std::int32_t>(k));
+    const Vec3 n = reference.facet_normal(static_cast<std::int32_t>(k));
     // F^-T N = (1/det) [[f3, -f2], [-f1, f0]] N.
     double mx = (f[3] * n[0] - f[2] * n[1]) / det, my = (-f[1] * n[0] + f[0] * n[1]) / det;
     const double length = std::hypot(mx, my);

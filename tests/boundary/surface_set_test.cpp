@@ -27,8 +27,8 @@ TEST(SurfaceSet, LatticeFacesAreTheMissingNeighbours) {
   const auto k = static_cast<std::size_t>(
       std::find(surface.node.begin(), surface.node.end(), corner) - surface.node.begin());
   ASSERT_EQ(surface.facets_end(k) - surface.facets_begin(k), 2);
-  EXPECT_EQ(surface.facet_normal(surface.facets_begin(k)), (Vector3{-1.0, 0.0, 0.0}));
-  EXPECT_EQ(surface.facet_normal(surface.facets_begin(k) + 1), (Vector3{0.0, -1.0, 0.0}));
+  EXPECT_EQ(surface.facet_normal(surface.facets_begin(k)), (Vec3{-1.0, 0.0, 0.0}));
+  EXPECT_EQ(surface.facet_normal(surface.facets_begin(k) + 1), (Vec3{0.0, -1.0, 0.0}));
 
   // A mirror plane y = 0 closes the bottom faces.
   for (std::int32_t i = 0; i < 3; ++i)
@@ -40,7 +40,7 @@ TEST(SurfaceSet, LatticeFacesAreTheMissingNeighbours) {
 // The faces of a lattice body by the rule the lattice suggests: the directions +-e_a with no
 // neighbour node and no mirror plane, in the order -x, +x, -y, +y, as node -> normals. Written
 // here from positions, independently of the outline.
-std::vector<std::pair<std::int32_t, std::vector<Vector3>>> missing_neighbours(
+std::vector<std::pair<std::int32_t, std::vector<Vec3>>> missing_neighbours(
     const NodeSets& nodes, const std::vector<std::uint8_t>& mirror_axes) {
   const PointCloud& x = nodes.sph_nodes;
   const double dx = nodes.spacing;
@@ -50,16 +50,16 @@ std::vector<std::pair<std::int32_t, std::vector<Vector3>>> missing_neighbours(
         return true;
     return false;
   };
-  std::vector<std::pair<std::int32_t, std::vector<Vector3>>> faces;
+  std::vector<std::pair<std::int32_t, std::vector<Vec3>>> faces;
   for (std::size_t i = 0; i < x.size(); ++i) {
-    std::vector<Vector3> normals;
+    std::vector<Vec3> normals;
     for (int a = 0; a < 2; ++a) {
       if ((mirror_axes[i] >> a) & 1u) continue;
       for (const double sign : {-1.0, 1.0}) {
         const double px = x.position[0][i] + (a == 0 ? sign * dx : 0.0);
         const double py = x.position[1][i] + (a == 1 ? sign * dx : 0.0);
         if (node_near(px, py)) continue;
-        Vector3 n{};
+        Vec3 n{};
         n[static_cast<std::size_t>(a)] = sign;
         normals.push_back(n);
       }
@@ -138,8 +138,8 @@ TEST(SurfaceSet, OppositeFacetsAreOneProjection) {
   surface.add_facet({0.0, 1.0, 0.0});
   const SurfaceNormals normals = surface.projected_normals(0);
   ASSERT_EQ(normals.count, 2);
-  EXPECT_EQ(normals.normal[0], (Vector3{-1.0, 0.0, 0.0}));
-  EXPECT_EQ(normals.normal[1], (Vector3{0.0, 1.0, 0.0}));
+  EXPECT_EQ(normals.normal[0], (Vec3{-1.0, 0.0, 0.0}));
+  EXPECT_EQ(normals.normal[1], (Vec3{0.0, 1.0, 0.0}));
   surface.projected[2] = 0;
   EXPECT_EQ(surface.projected_normals(0).count, 1);
 }

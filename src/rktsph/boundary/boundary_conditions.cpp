@@ -21,14 +21,13 @@ const std::vector<std::int32_t>& group_nodes(
                      "a group defined under 'groups' or a built-in group");
   return it->second;
 }
-bool same_normal(const Vector3& a, const Vector3& b) {
+bool same_normal(const Vec3& a, const Vec3& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] > 1.0 - 1e-9;
 }
 
-std::vector<Vector3> facet_normals(const SurfaceSet& surface,
-                                   const std::vector<std::int32_t>& surface_index,
-                                   std::int32_t node) {
-  std::vector<Vector3> normals;
+std::vector<Vec3> facet_normals(const SurfaceSet& surface,
+                                const std::vector<std::int32_t>& surface_index, std::int32_t node) {
+  std::vector<Vec3> normals;
   const std::int32_t k = surface_index[static_cast<std::size_t>(node)];
   if (k < 0) return normals;
   for (std::int32_t f = surface.facets_begin(static_cast<std::size_t>(k));
@@ -38,15 +37,14 @@ std::vector<Vector3> facet_normals(const SurfaceSet& surface,
 }
 
 // The outward normals shared by every node of a group: the face(s) the group lies on.
-std::vector<Vector3> common_normals(const SurfaceSet& surface,
-                                    const std::vector<std::int32_t>& surface_index,
-                                    const std::vector<std::int32_t>& members) {
-  std::vector<Vector3> common = facet_normals(surface, surface_index, members.front());
+std::vector<Vec3> common_normals(const SurfaceSet& surface,
+                                 const std::vector<std::int32_t>& surface_index,
+                                 const std::vector<std::int32_t>& members) {
+  std::vector<Vec3> common = facet_normals(surface, surface_index, members.front());
   for (std::int32_t node : members) {
-    const std::vector<Vector3> own = facet_normals(surface, surface_index, node);
-    std::erase_if(common, [&](const Vector3& c) {
-      return std::none_of(own.begin(), own.end(),
-                          [&](const Vector3& o) { return same_normal(o, c); });
+    const std::vector<Vec3> own = facet_normals(surface, surface_index, node);
+    std::erase_if(common, [&](const Vec3& c) {
+      return std::none_of(own.begin(), own.end(), [&](const Vec3& o) { return same_normal(o, c); });
     });
   }
   return common;
@@ -55,7 +53,7 @@ std::vector<Vector3> common_normals(const SurfaceSet& surface,
 // The share of node's face of outward normal `normal` that the facets with all their nodes in the
 // group make up: their measure over that of every outline facet of the face at the node.
 double loaded_share(const SurfaceSet& surface, const std::vector<std::int32_t>& surface_index,
-                    const Outline& outline, std::int32_t node, const Vector3& normal,
+                    const Outline& outline, std::int32_t node, const Vec3& normal,
                     const std::vector<std::uint8_t>& in_group) {
   const std::int32_t k = surface_index[static_cast<std::size_t>(node)];
   if (k < 0) return 0.0;
@@ -294,7 +292,7 @@ BoundaryConditions::BoundaryConditions(
       for (int a = 0; a < d; ++a)
         if (condition.velocity[a]) axes |= static_cast<std::uint8_t>(1u << a);
     if (axes == 0) continue;
-    const std::vector<Vector3> faces = common_normals(surface_, surface_index, members);
+    const std::vector<Vec3> faces = common_normals(surface_, surface_index, members);
     for (std::int32_t node : members) {
       velocity_axes_[node] |= axes;
       // A group on no common face (a point, a region): all of its nodes' faces are driven.
@@ -319,7 +317,7 @@ BoundaryConditions::BoundaryConditions(
     if (condition.kind != BoundaryConditionSpec::Kind::Traction) continue;
     const auto& members = group_nodes(groups, condition);
     // The face the traction acts on: the outward normal shared by every node of the group.
-    const std::vector<Vector3> common = common_normals(surface_, surface_index, members);
+    const std::vector<Vec3> common = common_normals(surface_, surface_index, members);
     if (common.size() != 1)
       throw InputError(condition.where, "boundary_conditions.group", condition.group,
                        common.empty() ? "the group's nodes share no free face, so the traction "
@@ -424,10 +422,10 @@ BoundaryConditions::BoundaryConditions(
   }
 }
 
-bool BoundaryConditions::driven(std::int32_t node, const Vector3& normal) const {
+bool BoundaryConditions::driven(std::int32_t node, const Vec3& normal) const {
   const auto& faces = driven_normals_[static_cast<std::size_t>(node)];
   return std::any_of(faces.begin(), faces.end(),
-                     [&](const Vector3& f) { return same_normal(f, normal); });
+                     [&](const Vec3& f) { return same_normal(f, normal); });
 }
 
 void BoundaryConditions::classify(SurfaceSet& surface) const {
@@ -435,7 +433,7 @@ void BoundaryConditions::classify(SurfaceSet& surface) const {
   for (std::size_t k = 0; k < surface.size(); ++k) {
     const std::int32_t node = surface.node[k];
     for (std::int32_t f = surface.facets_begin(k); f < surface.facets_end(k); ++f) {
-      const Vector3 n = surface.facet_normal(f);
+      const Vec3 n = surface.facet_normal(f);
       const auto i = static_cast<std::size_t>(f);
       surface.reactions[i] =
           driven(node, n) ? static_cast<std::uint8_t>(velocity_axes_[node] & every) : 0;
@@ -536,7 +534,7 @@ std::optional<double> BoundaryConditions::biot_pore_pressure(const FieldArray& v
 }
 
 void BoundaryConditions::append_overwritten(
-    std::int32_t node, const Vector3& normal, std::uint8_t components,
+    std::int32_t node, const Vec3& normal, std::uint8_t components,
     std::vector<std::pair<std::int32_t, int>>& pairs) const {
   const auto on_axis = as_axis_normal(normal);
   for (int a = 0; a < dimension_; ++a)

@@ -87,13 +87,13 @@ class BoundaryConditions {
   /// `normal`, share the part of the node's face that the loaded facets make up.
   struct ImposedTraction {
     std::int32_t node;
-    Vector3 normal;
+    Vec3 normal;
     std::array<int, 3> function;  // per global component, index into functions_; -1: not given
     double share;
   };
   /// A fixed plane its group's nodes may reach but not cross (docs/theory.md §9.13).
   struct RigidWall {
-    Vector3 point{}, normal{};  // normal: unit, into the body
+    Vec3 point{}, normal{};  // normal: unit, into the body
     bool rough = true;
     std::vector<std::int32_t> nodes;
     std::vector<std::uint8_t> contact;  // per node of `nodes`: on or beyond the plane
@@ -105,11 +105,11 @@ class BoundaryConditions {
   /// Marks the facets that velocity conditions act on: their imposed components are reactions,
   /// and a facet whose normal velocity is imposed is not projected.
   void classify(SurfaceSet& surface) const;
-  bool driven(std::int32_t node, const Vector3& normal) const;
+  bool driven(std::int32_t node, const Vec3& normal) const;
   StressTensor stress_at(const FieldArray& values, std::size_t row) const;
   void store_stress(const StressTensor& sigma, FieldArray& values, std::size_t row) const;
   std::optional<double> biot_pore_pressure(const FieldArray& values, std::size_t row) const;
-  void append_overwritten(std::int32_t node, const Vector3& normal, std::uint8_t components,
+  void append_overwritten(std::int32_t node, const Vec3& normal, std::uint8_t components,
                           std::vector<std::pair<std::int32_t, int>>& pairs) const;
 
   int dimension_ = 1;
@@ -117,7 +117,7 @@ class BoundaryConditions {
   std::vector<MirrorPlane> mirror_planes_;
   std::vector<std::uint8_t> mirror_axes_;
   std::vector<std::uint8_t> velocity_axes_;
-  std::vector<std::vector<Vector3>> driven_normals_;  // per node: faces of its velocity conditions
+  std::vector<std::vector<Vec3>> driven_normals_;  // per node: faces of its velocity conditions
   SurfaceSet surface_;
   std::optional<PerimeterNormals> perimeter_;  // of the lattice surface, built on first use
   const NodeSets& nodes_;

@@ -6,12 +6,11 @@
 #include <stdexcept>
 
 #include "rktsph/core/parallel.hpp"
+#include "rktsph/core/small_tensor.hpp"
 #include "rktsph/sph/kernel.hpp"
 
 namespace rktsph {
 namespace {
-
-using Vector = std::array<double, 3>;
 
 /// Smallest eigenvalue of the symmetric part of the 2x2 matrix m (row-major, m[2*a + b]).
 double smallest_symmetric_eigenvalue(const std::array<double, 4>& m) {
@@ -28,12 +27,12 @@ constexpr double kIllConditioned = 0.05;
 
 struct NodeSums {
   std::array<double, 4> matrix{0.0, 0.0, 0.0, 0.0};  // M_i, row-major
-  Vector gradient_sum{0.0, 0.0, 0.0};                // sum_j V_j grad_i W_ij
+  Vec3 gradient_sum{0.0, 0.0, 0.0};                  // sum_j V_j grad_i W_ij
 };
 
 /// Unit vector along v, or the zero vector if v is (numerically) zero. `scale` is the magnitude
 /// of a normal sum at a face, so that round-off in a symmetric sum is not taken for a direction.
-Vector unit_or_zero(const Vector& v, double scale) {
+Vec3 unit_or_zero(const Vec3& v, double scale) {
   const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   if (!(length > 1e-10 * scale)) return {0.0, 0.0, 0.0};
   return {v[0] / length, v[1] / length, v[2] / length};
@@ -41,13 +40,13 @@ Vector unit_or_zero(const Vector& v, double scale) {
 
 /// Marrone's normal -M^-1 sum V grad W, or the uncorrected -sum V grad W where M is
 /// ill-conditioned.
-Vector corrected_normal(const NodeSums& sums, double lambda_hat, double scale) {
-  const Vector& s = sums.gradient_sum;
+Vec3 corrected_normal(const NodeSums& sums, double lambda_hat, double scale) {
+  const Vec3& s = sums.gradient_sum;
   if (lambda_hat < kIllConditioned) return unit_or_zero({-s[0], -s[1], 0.0}, scale);
   const std::array<double, 4>& m = sums.matrix;
   const double determinant = m[0] * m[3] - m[1] * m[2];
-  const Vector nu{-(m[3] * s[0] - m[1] * s[1]) / determinant,
-                  -(-m[2] * s[0] + m[0] * s[1]) / determinant, 0.0};
+  const Vec3 nu{-(m[3] * s[0] - m[1] * s[1]) / determinant,
+                -(-m[2] * s[0] + m[0] * s[1]) / determinant, 0.0};
   return unit_or_zero(nu, scale);
 }
 
@@ -116,23 +115,22 @@ void indicator_normals(const PointCloud& points, const CellList& cells,
   for (std::int64_t signed_i = 0; signed_i < count; ++signed_i) {
     const auto i = static_cast<std::size_t>(signed_i);
     if (out.on_surface[i] == 0) continue;
-    Vector g{0.0, 0.0, 0.0};
-    cells.for_each_within(points.point(i), radius,
-                          [&](std::int32_t j, const Vector& offset, double) {
-                            const double f = indicator(static_cast<std::size_t>(j));
-                            if (f == 0.0) return;  // f_i = 0 on a surface node
-                            const double volume = points.volume[static_cast<std::size_t>(j)];
-                            const Vector gradient = kernel.gradient(offset, h);
-                            g[0] += volume * f * gradient[0];
-                            g[1] += volume * f * gradient[1];
-                          });
-    const Vector refined = unit_or_zero({-g[0], -g[1], 0.0}, normal_scale);
+    Vec3 g{0.0, 0.0, 0.0};
+    cells.for_each_within(points.point(i), radius, [&](std::int32_t j, const Vec3& offset, double) {
+      const double f = indicator(static_cast<std::size_t>(j));
+      if (f == 0.0) return;  // f_i = 0 on a surface node
+      const double volume = points.volume[static_cast<std::size_t>(j)];
+      const Vec3 gradient = kernel.gradient(offset, h);
+      g[0] += volume * f * gradient[0];
+      g[1] += volume * f * gradient[1];
+    });
+    const Vec3 refined = unit_or_zero({-g[0], -g[1], 0.0}, normal_scale);
     // No interior neighbour (a spray node, a filament): keep Marrone's normal.
     if (refined[0] == 0.0 && refined[1] == 0.0) continue;
-    Vector result = refined;
+    Vec3 result = refined;
     if (options.normal == FreeSurfaceNormal::Average) {
-      const Vector sum{refined[0] + out.normal[0][i], refined[1] + out.normal[1][i], 0.0};
-      const Vector average = unit_or_zero(sum, 1.0);
+      const Vec3 sum{refined[0] + out.normal[0][i], refined[1] + out.normal[1][i], 0.0};
+      const Vec3 average = unit_or_zero(sum, 1.0);
       if (average[0] != 0.0 || average[1] != 0.0) result = average;
     }
     out.normal[0][i] = result[0];
@@ -156,9 +154,9 @@ void smooth_normals(const PointCloud& points, const CellList& cells,
   for (std::int64_t signed_i = 0; signed_i < count; ++signed_i) {
     const auto i = static_cast<std::size_t>(signed_i);
     if (out.on_surface[i] == 0) continue;
-    Vector sum{0.0, 0.0, 0.0};
+    Vec3 sum{0.0, 0.0, 0.0};
     cells.for_each_within(points.point(i), radius,
-                          [&](std::int32_t signed_j, const Vector&, double distance_squared) {
+                          [&](std::int32_t signed_j, const Vec3&, double distance_squared) {
                             const auto j = static_cast<std::size_t>(signed_j);
                             if (out.on_surface[j] == 0) return;
                             if (nx[i] * nx[j] + ny[i] * ny[j] < cosine) return;
@@ -166,7 +164,7 @@ void smooth_normals(const PointCloud& points, const CellList& cells,
                             sum[0] += w * nx[j];
                             sum[1] += w * ny[j];
                           });
-    const Vector smoothed = unit_or_zero(sum, 1.0);
+    const Vec3 smoothed = unit_or_zero(sum, 1.0);
     if (smoothed[0] == 0.0 && smoothed[1] == 0.0) continue;
     out.normal[0][i] = smoothed[0];
     out.normal[1][i] = smoothed[1];
@@ -188,7 +186,7 @@ double lattice_renormalisation_eigenvalue(KernelType kernel_type, int dimension,
   const int y_reach = dimension == 1 ? 0 : reach;
   for (int l = -y_reach; l <= y_reach; ++l) {
     for (int k = -reach; k <= reach; ++k) {
-      const Vector offset{-k * lattice_spacing, -l * lattice_spacing, 0.0};  // x_i - x_j
+      const Vec3 offset{-k * lattice_spacing, -l * lattice_spacing, 0.0};  // x_i - x_j
       if (offset[0] * offset[0] + offset[1] * offset[1] >= radius * radius) continue;
       m_xx += volume * (-offset[0]) * kernel.gradient(offset, smoothing_length)[0];
     }
@@ -236,11 +234,11 @@ void detect_free_surface(const PointCloud& points, const CellList& cells,
 #pragma omp parallel for schedule(static) reduction(+ : candidates) if (count > kParallelThreshold)
   for (std::int64_t signed_i = 0; signed_i < count; ++signed_i) {
     const auto i = static_cast<std::size_t>(signed_i);
-    const Vector xi = points.point(i);
+    const Vec3 xi = points.point(i);
     NodeSums sums;
-    cells.for_each_within(xi, radius, [&](std::int32_t j, const Vector& offset, double) {
+    cells.for_each_within(xi, radius, [&](std::int32_t j, const Vec3& offset, double) {
       const double volume = points.volume[static_cast<std::size_t>(j)];
-      const Vector gradient = kernel.gradient(offset, h);
+      const Vec3 gradient = kernel.gradient(offset, h);
       // x_j - x_i = -offset.
       sums.matrix[0] -= volume * offset[0] * gradient[0];
       sums.matrix[1] -= volume * offset[0] * gradient[1];
@@ -252,7 +250,7 @@ void detect_free_surface(const PointCloud& points, const CellList& cells,
     const double lambda_hat = smallest_symmetric_eigenvalue(sums.matrix) * inverse_reference;
     out.lambda[i] = lambda_hat;
     if (is_excluded(i) || lambda_hat > options.interior_threshold) continue;
-    const Vector normal = corrected_normal(sums, lambda_hat, normal_scale);
+    const Vec3 normal = corrected_normal(sums, lambda_hat, normal_scale);
     bool surface = true;
     if (lambda_hat > options.surface_threshold) {
       ++candidates;
@@ -261,7 +259,7 @@ void detect_free_surface(const PointCloud& points, const CellList& cells,
       surface = normal[0] != 0.0 || normal[1] != 0.0;
       if (surface) {
         const double scan_squared = scan * scan;
-        cells.for_each_within(xi, radius, [&](std::int32_t, const Vector& offset, double d2) {
+        cells.for_each_within(xi, radius, [&](std::int32_t, const Vec3& offset, double d2) {
           if (!surface || d2 == 0.0) return;
           // x_j - T = -offset - s n.
           const double rx = -offset[0] - scan * normal[0];

@@ -24,7 +24,7 @@ PerimeterNormals::PerimeterNormals(const Outline& outline, const PointCloud& ref
   for (std::size_t k = 0; k < surface.size(); ++k) {
     const std::int32_t node = surface.node[k];
     for (std::int32_t f = surface.facets_begin(k); f < surface.facets_end(k); ++f) {
-      const Vector3 normal = surface.facet_normal(f);
+      const Vec3 normal = surface.facet_normal(f);
       // The neighbours along the face: the far ends of the outline facets the facet gathers,
       // the one lower along the face's axis (the axis the normal mostly is not on) first.
       const std::size_t along = std::abs(normal[0]) > std::abs(normal[1]) ? 1 : 0;

@@ -10,7 +10,7 @@ namespace rktsph {
 
 namespace {
 /// n and m describe the same plane: the projection along n equals the one along -n.
-bool parallel(const Vector3& n, const Vector3& m) {
+bool parallel(const Vec3& n, const Vec3& m) {
   const double dot = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
   return std::abs(dot) > 1.0 - 1e-9;
 }
@@ -33,7 +33,7 @@ void SurfaceSet::add_node(std::int32_t id) {
   first_facet.push_back(first_facet.back());
 }
 
-void SurfaceSet::add_facet(const Vector3& unit_normal, std::span<const std::int32_t> pieces) {
+void SurfaceSet::add_facet(const Vec3& unit_normal, std::span<const std::int32_t> pieces) {
   for (std::size_t c = 0; c < 3; ++c)
     normal[c].push_back(unit_normal[c]);
   if (first_piece.empty()) first_piece.push_back(0);
@@ -54,7 +54,7 @@ SurfaceNormals SurfaceSet::projected_normals(std::size_t k) const {
   SurfaceNormals normals;
   for (std::int32_t f = facets_begin(k); f < facets_end(k); ++f) {
     if (!projected[static_cast<std::size_t>(f)]) continue;
-    const Vector3 n = facet_normal(f);
+    const Vec3 n = facet_normal(f);
     bool listed = false;
     for (int r = 0; r < normals.count; ++r)
       listed = listed || parallel(normals.normal[static_cast<std::size_t>(r)], n);
@@ -68,7 +68,7 @@ void outline_surface(const CellComplex& cells, const Outline& outline, const Poi
   surface.clear();
   const int d = cells.dimension();
   struct Face {
-    Vector3 normal;
+    Vec3 normal;
     int order;  // 2 a + (n_a > 0) for the dominant axis a: -x, +x, -y, +y
     double angle;
     std::vector<std::int32_t> pieces;
@@ -81,7 +81,7 @@ void outline_surface(const CellComplex& cells, const Outline& outline, const Poi
     if (node_place(fraction, d) != NodePlace::Boundary) continue;
     faces.clear();
     for (const std::int32_t f : outline.facets_at(i)) {
-      const Vector3 n = outline.normal(static_cast<std::size_t>(f));
+      const Vec3 n = outline.normal(static_cast<std::size_t>(f));
       const int axis = std::abs(n[1]) > std::abs(n[0]) ? 1 : 0;
       if (((mirrors >> axis) & 1u) && std::abs(n[static_cast<std::size_t>(axis)]) > 1.0 - 1e-9)
         continue;  // a mirror plane closes this side

@@ -11,13 +11,12 @@
 #include <vector>
 
 #include "rktsph/core/point_cloud.hpp"
+#include "rktsph/core/small_tensor.hpp"
 #include "rktsph/mesh/cell_complex.hpp"
 #include "rktsph/mesh/outline.hpp"
 #include "rktsph/physics/surface_normals.hpp"
 
 namespace rktsph {
-
-using Vector3 = std::array<double, 3>;
 
 struct SurfaceSet {
   // Per surface node k, in increasing node id (one node may carry several facets: edges, corners).
@@ -41,7 +40,7 @@ struct SurfaceSet {
   std::size_t facet_count() const { return reactions.size(); }
   std::int32_t facets_begin(std::size_t k) const { return first_facet[k]; }
   std::int32_t facets_end(std::size_t k) const { return first_facet[k + 1]; }
-  Vector3 facet_normal(std::int32_t f) const {
+  Vec3 facet_normal(std::int32_t f) const {
     const auto i = static_cast<std::size_t>(f);
     return {normal[0][i], normal[1][i], normal[2][i]};
   }
@@ -52,7 +51,7 @@ struct SurfaceSet {
   void add_node(std::int32_t id);
   /// Adds a facet of outward unit normal `unit_normal` to the last node, traction-free, made of
   /// the outline facets `pieces`.
-  void add_facet(const Vector3& unit_normal, std::span<const std::int32_t> pieces = {});
+  void add_facet(const Vec3& unit_normal, std::span<const std::int32_t> pieces = {});
   std::span<const std::int32_t> pieces(std::int32_t f) const {
     const auto i = static_cast<std::size_t>(f);
     const auto start = static_cast<std::size_t>(first_piece[i]);

@@ -26,9 +26,9 @@ void impose_on_axis(const TractionCondition& condition, const AxisNormal& n, int
 /// u·sigma·w unchanged for tangents u, w: in the frame (n, tangents) it sets sigma_nn and sigma_nt
 /// and keeps sigma_tt.
 void impose_on_any_normal(const TractionCondition& condition, int dimension, StressTensor& sigma) {
-  const Vector3& n = condition.normal;
+  const Vec3& n = condition.normal;
   const auto d = static_cast<std::size_t>(dimension);
-  Vector3 change{};
+  Vec3 change{};
   for (std::size_t c = 0; c < d; ++c) {
     if (!imposes(condition, static_cast<int>(c))) continue;
     double sigma_n = 0.0;
@@ -47,7 +47,7 @@ void impose_on_any_normal(const TractionCondition& condition, int dimension, Str
 }
 }  // namespace
 
-std::optional<AxisNormal> as_axis_normal(const Vector3& n) {
+std::optional<AxisNormal> as_axis_normal(const Vec3& n) {
   for (std::size_t a = 0; a < 3; ++a) {
     if (n[a] != 1.0 && n[a] != -1.0) continue;
     return AxisNormal{static_cast<int>(a), n[a]};

@@ -14,8 +14,8 @@ namespace rktsph {
 using StressTensor = std::array<std::array<double, 3>, 3>;
 
 struct TractionCondition {
-  Vector3 normal{};    ///< outward unit normal n
-  Vector3 traction{};  ///< target t, components in the global frame [Pa, tension positive]
+  Vec3 normal{};    ///< outward unit normal n
+  Vec3 traction{};  ///< target t, components in the global frame [Pa, tension positive]
   /// Bit c: (sigma·n)_c = t_c is imposed; the other components keep their current sigma·n (a
   /// reaction to an imposed velocity, or a component this condition does not give).
   std::uint8_t components = 0;
@@ -29,7 +29,7 @@ struct AxisNormal {
   int axis = 0;
   double sign = 1.0;
 };
-std::optional<AxisNormal> as_axis_normal(const Vector3& n);
+std::optional<AxisNormal> as_axis_normal(const Vec3& n);
 
 /// Imposes `condition` on `sigma` in `dimension` (1 to 3) dimensions. On a coordinate axis
 /// n = sign e_a this assigns sigma_ac = sign t_c (+ alpha p_w for c = a) exactly; on any other

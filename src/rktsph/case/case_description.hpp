@@ -13,12 +13,11 @@
 #include <vector>
 
 #include "rktsph/core/error.hpp"
+#include "rktsph/core/small_tensor.hpp"
 #include "rktsph/core/time_function.hpp"
 #include "rktsph/sph/kernel_type.hpp"
 
 namespace rktsph {
-
-using Vec3 = std::array<double, 3>;
 
 /// "dry_solid" (V1), "dry_large_deformation" (V2), "saturated_vpw" (V3)
 enum class ModelKind { DrySolid, DryLargeDeformation, SaturatedVpw };

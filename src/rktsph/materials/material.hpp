@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-namespace rktsph {
+#include "rktsph/core/small_tensor.hpp"
 
-using SymmetricTensor = std::array<double, 6>;  // xx, yy, zz, xy, yz, zx
+namespace rktsph {
 
 struct ElasticConstants {
   double young_modulus = 0.0;  // E [Pa]

@@ -1,4 +1,5 @@
 #include "rktsph/simulation/energy_budget.hpp"
+#include "rktsph/core/small_tensor.hpp"
 
 #include <algorithm>
 #include <array>
@@ -11,14 +12,12 @@ namespace rktsph {
 
 namespace {
 
-using Vector = std::array<double, 3>;
-
 // The total stress of node i as a 3 x 3 matrix: the carried stress, less alpha p_w on the
 // diagonal in the saturated model.
-std::array<Vector, 3> total_stress(const PhysicsModel& model, const FieldArray& values,
-                                   std::size_t i) {
+std::array<Vec3, 3> total_stress(const PhysicsModel& model, const FieldArray& values,
+                                 std::size_t i) {
   const SymmetricTensor s = model.stress_tensor(values, i);
-  std::array<Vector, 3> sigma{{{s[0], s[3], s[5]}, {s[3], s[1], s[4]}, {s[5], s[4], s[2]}}};
+  std::array<Vec3, 3> sigma{{{s[0], s[3], s[5]}, {s[3], s[1], s[4]}, {s[5], s[4], s[2]}}};
   if (const int p = model.pore_pressure_field(); p >= 0)
     for (std::size_t a = 0; a < 3; ++a)
       sigma[a][a] -= model.biot_coefficient() * values(p, i);
@@ -53,9 +52,9 @@ double boundary_power(const Simulation& simulation) {
     const std::int32_t node = surface.node[k];
     const auto i = static_cast<std::size_t>(node);
     const std::int32_t begin = surface.facets_begin(k), end = surface.facets_end(k);
-    const std::array<Vector, 3> sigma = total_stress(model, values, i);
+    const std::array<Vec3, 3> sigma = total_stress(model, values, i);
     for (std::int32_t f = begin; f < end; ++f) {
-      const Vector n = surface.facet_normal(f);
+      const Vec3 n = surface.facet_normal(f);
       double traction_velocity = 0.0;  // (sigma n) . v
       for (int a = 0; a < d; ++a) {
         double traction = 0.0;

@@ -1,5 +1,6 @@
 #include "rktsph/sph/operators.hpp"
 #include "rktsph/core/parallel.hpp"
+#include "rktsph/core/small_tensor.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -18,7 +19,6 @@ namespace rktsph {
 
 namespace {
 
-using Vector = std::array<double, 3>;
 using Matrix = std::array<std::array<double, 3>, 3>;
 
 // Largest number of fields one apply_operator call handles (v and sigma in 3D plus spares).
@@ -57,7 +57,7 @@ Matrix inverse(const Matrix& a, int d, double det) {
 }
 
 // Reflects x across the planes selected by the bits of `subset` (indices into mirrors).
-Vector reflect(Vector x, const std::vector<MirrorPlane>& mirrors, unsigned subset) {
+Vec3 reflect(Vec3 x, const std::vector<MirrorPlane>& mirrors, unsigned subset) {
   for (std::size_t m = 0; m < mirrors.size(); ++m)
     if (subset & (1u << m)) {
       const MirrorPlane& plane = mirrors[m];
@@ -86,8 +86,8 @@ namespace {
 /// Whether the target is within `radius` of every plane of `subset` (a set of planes contributes
 /// images only then), and the subset's reflection bits (one per axis reflected an odd number of
 /// times).
-bool near_every_plane(const Vector& target, const std::vector<MirrorPlane>& mirrors,
-                      unsigned subset, double radius, std::uint8_t& reflection) {
+bool near_every_plane(const Vec3& target, const std::vector<MirrorPlane>& mirrors, unsigned subset,
+                      double radius, std::uint8_t& reflection) {
   bool near_all = true;
   reflection = 0;
   for (std::size_t m = 0; m < mirrors.size(); ++m)
@@ -100,7 +100,7 @@ bool near_every_plane(const Vector& target, const std::vector<MirrorPlane>& mirr
 
 /// True if source x lies on a plane of `subset`: its image there coincides with a point already
 /// counted.
-bool on_a_plane(const Vector& x, const std::vector<MirrorPlane>& mirrors, unsigned subset,
+bool on_a_plane(const Vec3& x, const std::vector<MirrorPlane>& mirrors, unsigned subset,
                 double tolerance) {
   for (std::size_t m = 0; m < mirrors.size(); ++m)
     if ((subset & (1u << m)) && std::abs(x[mirrors[m].axis] - mirrors[m].coordinate) <= tolerance)
@@ -112,7 +112,7 @@ bool on_a_plane(const Vector& x, const std::vector<MirrorPlane>& mirrors, unsign
 /// `target` or of its mirror images: the subsets of planes in turn, the sources of each in cell
 /// order. With `skip_on_plane` the image of a source lying on a plane of its subset is left out.
 template <class Visit>
-void for_each_stencil_source(const Vector& target, const CellList& cells,
+void for_each_stencil_source(const Vec3& target, const CellList& cells,
                              const OperatorOptions& options, std::int32_t exclude, double radius,
                              bool skip_on_plane, Visit&& visit) {
   const double on_plane_tolerance = 1e-8 * options.smoothing_length;
@@ -122,10 +122,10 @@ void for_each_stencil_source(const Vector& target, const CellList& cells,
     std::uint8_t reflection = 0;
     if (!near_every_plane(target, mirrors, subset, radius, reflection)) continue;
     // |target - R(x_j)| = |R(target) - x_j|: search around the reflected target.
-    const Vector query = reflect(target, mirrors, subset);
-    cells.for_each_within(query, radius, [&](std::int32_t j, const Vector&, double) {
+    const Vec3 query = reflect(target, mirrors, subset);
+    cells.for_each_within(query, radius, [&](std::int32_t j, const Vec3&, double) {
       if (subset == 0 && j == exclude) return;
-      const Vector x = sources.point(static_cast<std::size_t>(j));
+      const Vec3 x = sources.point(static_cast<std::size_t>(j));
       if (skip_on_plane && on_a_plane(x, mirrors, subset, on_plane_tolerance)) return;
       visit(j, subset, reflection, x);
     });
@@ -134,7 +134,7 @@ void for_each_stencil_source(const Vector& target, const CellList& cells,
 
 }  // namespace
 
-void gather_stencil(const Vector& target, const CellList& cells, const OperatorOptions& options,
+void gather_stencil(const Vec3& target, const CellList& cells, const OperatorOptions& options,
                     std::int32_t exclude, std::vector<StencilSource>& stencil) {
   stencil.clear();
   check_mirror_count(options);
@@ -142,13 +142,13 @@ void gather_stencil(const Vector& target, const CellList& cells, const OperatorO
   const PointCloud& sources = cells.points();
   for_each_stencil_source(
       target, cells, options, exclude, support, true,
-      [&](std::int32_t j, unsigned subset, std::uint8_t reflection, const Vector& x) {
+      [&](std::int32_t j, unsigned subset, std::uint8_t reflection, const Vec3& x) {
         stencil.push_back(StencilSource{j, reflection, reflect(x, options.mirrors, subset),
                                         sources.volume[static_cast<std::size_t>(j)]});
       });
 }
 
-void gather_candidates(const Vector& target, const CellList& cells, const OperatorOptions& options,
+void gather_candidates(const Vec3& target, const CellList& cells, const OperatorOptions& options,
                        std::int32_t exclude, double radius,
                        std::vector<StencilCandidate>& candidates) {
   candidates.clear();
@@ -157,12 +157,12 @@ void gather_candidates(const Vector& target, const CellList& cells, const Operat
   // and the picking tests where it is then.
   for_each_stencil_source(
       target, cells, options, exclude, radius, false,
-      [&](std::int32_t j, unsigned subset, std::uint8_t reflection, const Vector&) {
+      [&](std::int32_t j, unsigned subset, std::uint8_t reflection, const Vec3&) {
         candidates.push_back(StencilCandidate{j, static_cast<std::uint8_t>(subset), reflection});
       });
 }
 
-void gather_stencil(const Vector& target, const PointCloud& sources,
+void gather_stencil(const Vec3& target, const PointCloud& sources,
                     std::span<const StencilCandidate> candidates, const OperatorOptions& options,
                     std::vector<StencilSource>& stencil) {
   // The tests of the search in the cell lists at the support, with the same arithmetic, on the
@@ -175,7 +175,7 @@ void gather_stencil(const Vector& target, const PointCloud& sources,
   const int d = sources.dimension;
   unsigned subset = ~0u;
   bool near_all = false;
-  Vector query{};
+  Vec3 query{};
   for (const StencilCandidate& candidate : candidates) {
     if (candidate.subset != subset) {
       subset = candidate.subset;
@@ -184,7 +184,7 @@ void gather_stencil(const Vector& target, const PointCloud& sources,
       query = reflect(target, mirrors, subset);
     }
     if (!near_all) continue;
-    const Vector x = sources.point(static_cast<std::size_t>(candidate.column));
+    const Vec3 x = sources.point(static_cast<std::size_t>(candidate.column));
     double distance_squared = 0.0;
     for (int a = 0; a < d; ++a) {
       const double offset = query[a] - x[a];
@@ -203,7 +203,7 @@ namespace {
 // compute_row for a dimension known at compile time: the loops over axes unrolled, the kernel's
 // factors of h computed once per row. The arithmetic is the generic one's, term by term.
 template <int D>
-bool compute_row_in(const Vector& target, std::span<const StencilSource> stencil,
+bool compute_row_in(const Vec3& target, std::span<const StencilSource> stencil,
                     const OperatorOptions& options, GradientReference reference,
                     std::int32_t self_column, const RowSlots& slots) {
   const Kernel& kernel = options.kernel;
@@ -214,10 +214,10 @@ bool compute_row_in(const Vector& target, std::span<const StencilSource> stencil
 
   // Kernel values w_b = W V_b and gradients g_b = grad_a W(x_a - x_b) V_b (docs/theory.md eq. 4.2).
   double weight_sum = 0.0;
-  Vector gradient_sum{};
+  Vec3 gradient_sum{};
   for (std::size_t k = 0; k < n; ++k) {
     const StencilSource& s = stencil[k];
-    Vector offset{};
+    Vec3 offset{};
     double r2 = 0.0;
     for (int a = 0; a < D; ++a) {
       offset[a] = target[a] - s.position[a];
@@ -241,7 +241,7 @@ bool compute_row_in(const Vector& target, std::span<const StencilSource> stencil
   }
 
   // Reference point: the Shepard centroid (cross-set) or the target itself (self-referenced).
-  Vector reference_point = target;
+  Vec3 reference_point = target;
   if (reference == GradientReference::ShepardCentroid && weight_sum > 0.0) {
     reference_point = {0.0, 0.0, 0.0};
     for (std::size_t k = 0; k < n; ++k)
@@ -279,7 +279,7 @@ bool compute_row_in(const Vector& target, std::span<const StencilSource> stencil
   // Gradient weights K_b = A^-1 (g_b - G w^_b) (centroid) or A^-1 g_b (self).
   for (std::size_t k = 0; k < n; ++k) {
     const double shepard = weight_sum > 0.0 ? interpolation[k] / weight_sum : 0.0;
-    Vector raw{};
+    Vec3 raw{};
     for (int a = 0; a < D; ++a)
       raw[a] = gradient[a][k] -
                (reference == GradientReference::ShepardCentroid ? gradient_sum[a] * shepard : 0.0);
@@ -300,7 +300,7 @@ bool compute_row_in(const Vector& target, std::span<const StencilSource> stencil
           interpolation[k] -= (reference_point[a] - target[a]) * gradient[a][k];
   } else {
     // Self column: its value is the reference, so its weight cancels the others' sum.
-    Vector self_gradient{};
+    Vec3 self_gradient{};
     for (std::size_t k = 0; k < n; ++k) {
       interpolation[k] = 0.0;
       for (int a = 0; a < D; ++a)
@@ -317,7 +317,7 @@ bool compute_row_in(const Vector& target, std::span<const StencilSource> stencil
 
 }  // namespace
 
-bool compute_row(int dimension, const Vector& target, std::span<const StencilSource> stencil,
+bool compute_row(int dimension, const Vec3& target, std::span<const StencilSource> stencil,
                  const OperatorOptions& options, GradientReference reference,
                  std::int32_t self_column, const RowSlots& slots) {
   switch (dimension) {
@@ -366,14 +366,14 @@ class RowScratch {
 
 }  // namespace
 
-bool row_is_regular(int dimension, const Vector& target, std::span<const StencilSource> stencil,
+bool row_is_regular(int dimension, const Vec3& target, std::span<const StencilSource> stencil,
                     const OperatorOptions& options, GradientReference reference,
                     std::int32_t self_column) {
   const RowScratch scratch(row_size(stencil.size(), reference));
   return compute_row(dimension, target, stencil, options, reference, self_column, scratch.slots());
 }
 
-bool append_row(WeightTable& table, const Vector& target, std::span<const StencilSource> stencil,
+bool append_row(WeightTable& table, const Vec3& target, std::span<const StencilSource> stencil,
                 const OperatorOptions& options, GradientReference reference,
                 std::int32_t self_column) {
   const std::size_t first = table.source.size();
@@ -549,7 +549,7 @@ void report_degenerate(const OperatorWorkspace& workspace, std::size_t rows,
 auto cross_rows(const PointCloud& targets, const CellList& sources, const OperatorOptions& options,
                 std::size_t first = 0) {
   return [&targets, &sources, &options, first](std::size_t r, std::vector<StencilSource>& stencil) {
-    const Vector x = targets.point(first + r);
+    const Vec3 x = targets.point(first + r);
     gather_stencil(x, sources, options, -1, stencil);
     return RowTarget{x, GradientReference::ShepardCentroid, -1};
   };
@@ -582,7 +582,7 @@ void build_collocated_gradient(const PointCloud& points, const CellList& cells,
   build_rows(row_count, points.dimension, options, TableWeights::InterpolationAndGradient, table,
              workspace, [&](std::size_t r, std::vector<StencilSource>& stencil) {
                const auto self = rows.empty() ? static_cast<std::int32_t>(r) : rows[r];
-               const Vector x = points.point(static_cast<std::size_t>(self));
+               const Vec3 x = points.point(static_cast<std::size_t>(self));
                gather_stencil(x, cells, options, self, stencil);
                return RowTarget{x, GradientReference::Self, self};
              });
