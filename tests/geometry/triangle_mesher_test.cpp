@@ -214,6 +214,30 @@ TEST(TriangleMesher, NoTriangleStraddlesAMaterialBoundary) {
                                           : 0);
 }
 
+TEST(TriangleMesher, OverlappingShapesWhoseEdgesCrossMeetAtTheCrossings) {
+  // The later rectangle wins where they overlap; its edges cross the earlier one's at (4, 1.1)
+  // and (2.5, 3).
+  const NodeSets nodes = build_triangle_node_sets(
+      triangles(0.3,
+                {rectangle(0.0, 0.0, 4.0, 3.0, "soil"), rectangle(2.5, 1.1, 6.3, 4.2, "weak")}),
+      {"soil", "weak"});
+  std::array<double, 2> area{};
+  for (std::size_t p = 0; p < nodes.cells.cell_count(); ++p)
+    area[static_cast<std::size_t>(nodes.cells.material(p))] += nodes.stress_points.volume[p];
+  const double weak = 3.8 * 3.1, overlap = 1.5 * 1.9;
+  EXPECT_NEAR(area[1], weak, 1e-9);
+  EXPECT_NEAR(area[0], 12.0 - overlap, 1e-9);
+  const auto is_node = [&](double x, double y) {
+    for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i)
+      if (std::abs(nodes.sph_nodes.position[0][i] - x) < 1e-12 &&
+          std::abs(nodes.sph_nodes.position[1][i] - y) < 1e-12)
+        return true;
+    return false;
+  };
+  EXPECT_TRUE(is_node(4.0, 1.1));
+  EXPECT_TRUE(is_node(2.5, 3.0));
+}
+
 TEST(TriangleMesher, TheSpaceBetweenShapesStaysEmpty) {
   // A frame of four rectangles around a 4 x 4 hole, and a disjoint square beside it.
   const GeometrySpec geometry =
