@@ -8,7 +8,7 @@ RESULTS ?= results
 
 # Debian packages the build and the tests need (Debian 12).
 DEB_PACKAGES := build-essential cmake libeigen3-dev libyaml-cpp-dev libcli11-dev libfmt-dev \
-                libgtest-dev libgmock-dev libbenchmark-dev python3
+                libgtest-dev libgmock-dev libbenchmark-dev python3 libcgal-dev
 # Extra packages for the validation report (plots, browser check); not needed by `make test`.
 DEB_REPORT_PACKAGES := python3-matplotlib chromium
 # Extra packages for the sanitizer build with the libFuzzer targets (`make fuzz`, .ci/run): clang,

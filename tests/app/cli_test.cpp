@@ -247,6 +247,20 @@ TEST(CommandLine, CheckAcceptsAGoodCase) {
   EXPECT_NE(result.output.find("21 SPH nodes"), std::string::npos) << result.output;
 }
 
+TEST(CommandLine, CheckBuildsATriangleMeshAndARunOnItSaysWhatIsMissing) {
+  // A slope meshed with triangles (docs/theory.md §3.6): check builds and checks the mesh.
+  const std::string slope = std::string(RKTSPH_SOURCE_DIR) + "/cases/slope-elastic/case.yaml";
+  const Result check = run("check " + slope +
+                           " --set geometry.cells=triangles --set numerics.hourglass.stiffness=0");
+  EXPECT_EQ(check.status, 0) << check.output;
+  EXPECT_NE(check.output.find("OK ("), std::string::npos) << check.output;
+  // The hourglass stiffness (on by default in 2D) needs quadrilaterals: a clear error, no crash.
+  const Result stiffness = run("check " + slope + " --set geometry.cells=triangles");
+  EXPECT_EQ(stiffness.status, 3) << stiffness.output;
+  EXPECT_NE(stiffness.output.find("is a triangle"), std::string::npos) << stiffness.output;
+  EXPECT_NE(stiffness.output.find("needs quadrilaterals"), std::string::npos) << stiffness.output;
+}
+
 TEST(CommandLine, MisspelledKeyNamesFileLineAndKey) {
   const fs::path path = write_case("typo.yaml", replaced(kBar, "  spacing: 0.5", "  spacng: 0.5"));
   const Result result = run("check " + path.string());

@@ -836,6 +836,62 @@ TEST(CaseReader, PolygonWithARepeatedVertexIsRefused) {
 }
 
 // ------------------------------------------------------------------------------------------------
+// Cells: lattice or triangles (docs/theory.md §3.6)
+
+TEST(CaseReader, CellsAreALatticeByDefaultAndTrianglesOnRequest) {
+  const std::string base = read_fixture("rich2d.yaml");
+  EXPECT_EQ(read_case_text(base, kFile).geometry.cells, CellLayout::Lattice);
+  const std::string text =
+      replace_once(base, "  spacing: 0.25\n", "  spacing: 0.25\n  cells: triangles\n");
+  const CaseDescription description = read_case_text(text, kFile);
+  EXPECT_EQ(description.geometry.cells, CellLayout::Triangles);
+  // Written back, and read again the same.
+  const std::string written = write_case_yaml(description);
+  EXPECT_NE(written.find("cells: triangles"), std::string::npos) << written;
+  EXPECT_EQ(read_case_text(written, "written.yaml").geometry.cells, CellLayout::Triangles);
+  EXPECT_NE(write_case_yaml(read_case_text(base, kFile)).find("cells: lattice"), std::string::npos);
+}
+
+TEST(CaseReader, AnUnknownCellLayoutIsRefusedWithTheWordsAllowed) {
+  const std::string text = replace_once(read_fixture("rich2d.yaml"), "  spacing: 0.25\n",
+                                        "  spacing: 0.25\n  cells: hexagons\n");
+  const InputError error = read_error(text);
+  EXPECT_EQ(error.key(), "geometry.cells") << error.what();
+  EXPECT_EQ(error.value(), "hexagons") << error.what();
+  EXPECT_EQ(error.location().file, kFile);
+  EXPECT_EQ(error.location().line, position_of(text, "cells: hexagons").line) << error.what();
+  EXPECT_NE(error.allowed().find("lattice"), std::string::npos) << error.what();
+  EXPECT_NE(error.allowed().find("triangles"), std::string::npos) << error.what();
+}
+
+TEST(CaseReader, TriangleCellsIn1DAreRefused) {
+  const std::string text = replace_once(read_fixture("bar1d_minimal.yaml"), "  spacing: 0.5\n",
+                                        "  spacing: 0.5\n  cells: triangles\n");
+  const InputError error = read_error(text);
+  EXPECT_EQ(error.key(), "geometry.cells") << error.what();
+  EXPECT_EQ(error.location().line, position_of(text, "cells: triangles").line) << error.what();
+  EXPECT_NE(error.problem().find("2D"), std::string::npos) << error.what();
+  // The lattice is fine in 1D, said or not.
+  EXPECT_EQ(read_case_text(replace_once(read_fixture("bar1d_minimal.yaml"), "  spacing: 0.5\n",
+                                        "  spacing: 0.5\n  cells: lattice\n"),
+                           kFile)
+                .geometry.cells,
+            CellLayout::Lattice);
+}
+
+TEST(CaseReader, APolygonThatIsNotSimpleStaysAnErrorWithTriangleCells) {
+  const std::string base = replace_once(read_fixture("rich2d.yaml"), "  spacing: 0.25\n",
+                                        "  spacing: 0.25\n  cells: triangles\n");
+  const std::string text =
+      replace_once(base, "polygon: [[0, 0], [20, 0], [20, 10], [10, 10], [10, 15], [0, 15]]",
+                   "polygon: [[0, 0], [20, 0], [0, 15], [10, 15]]");
+  const InputError error = read_error(text);
+  EXPECT_EQ(error.key(), "geometry.shapes.0.polygon");
+  EXPECT_EQ(error.location().line, position_of(text, "[[0, 0], [20, 0], [0, 15]").line);
+  EXPECT_NE(error.problem().find("intersects itself"), std::string::npos) << error.what();
+}
+
+// ------------------------------------------------------------------------------------------------
 // Writing
 
 void expect_same_function(const TimeFunction& a, const TimeFunction& b, const std::string& what) {
@@ -867,6 +923,7 @@ void expect_same_case(const CaseDescription& a, const CaseDescription& b) {
   EXPECT_EQ(a.dimension, b.dimension);
   EXPECT_EQ(a.plane, b.plane);
   EXPECT_EQ(a.geometry.spacing, b.geometry.spacing);
+  EXPECT_EQ(a.geometry.cells, b.geometry.cells);
   ASSERT_EQ(a.geometry.shapes.size(), b.geometry.shapes.size());
   for (std::size_t i = 0; i < a.geometry.shapes.size(); ++i) {
     EXPECT_EQ(a.geometry.shapes[i].kind, b.geometry.shapes[i].kind);

@@ -6,16 +6,12 @@
 
 #include <cmath>
 
+#include "../support/shapes.hpp"
+
 namespace rktsph {
 namespace {
 
-ShapeSpec rectangle(double x0, double y0, double x1, double y1, const std::string& material) {
-  ShapeSpec shape;
-  shape.kind = ShapeSpec::Kind::Rectangle;
-  shape.vertices = {{x0, y0, 0.0}, {x1, y1, 0.0}};
-  shape.material = material;
-  return shape;
-}
+using test::rectangle;
 
 TEST(NodeSets, SegmentHasNodesAtBothEndsAndMidpointStressPoints) {
   GeometrySpec geometry;

@@ -48,10 +48,17 @@ struct ShapeSpec {
   SourceLocation where;
 };
 
+/// How the shapes are cut into cells (docs/theory.md §3.1 and §3.6).
+enum class CellLayout {
+  Lattice,    ///< a square lattice of spacing dx; shape vertices on lattice points
+  Triangles,  ///< a constrained Delaunay triangle mesh, edges at most dx; 2D only
+};
+
 struct GeometrySpec {
-  double spacing = 0.0;  ///< lattice spacing dx [m], > 0
-  /// Shapes fill one common lattice; where shapes overlap, the later shape's material wins
-  /// (so a small shape after a large one makes a weak zone).
+  double spacing = 0.0;  ///< lattice spacing dx, or the triangles' longest edge [m], > 0
+  CellLayout cells = CellLayout::Lattice;
+  /// Shapes fill one common lattice (or mesh); where shapes overlap, the later shape's material
+  /// wins (so a small shape after a large one makes a weak zone).
   std::vector<ShapeSpec> shapes;
   SourceLocation where;
 };

@@ -7,13 +7,29 @@
 #include <limits>
 
 #include "rktsph/core/axes.hpp"
+#include "rktsph/mesh/cell_geometry.hpp"
 
 namespace rktsph {
 
 namespace {
 
 // Tolerance, in units of dx, for "on the lattice" and "on the boundary" decisions.
-constexpr double kLatticeTolerance = 1e-6;
+constexpr double kLatticeTolerance = kSpacingTolerance;
+
+// A triangle mesh of longest edge dx holds about as many triangles as equilateral ones of edge
+// kTriangleEdgeFraction dx would (docs/theory.md §3.6; measured on slopes at two spacings, where it
+// is 0.67 to 0.70, and taken a little lower so that the estimate errs high): sizes the estimate
+// of a mesh before it is built.
+constexpr double kTriangleEdgeFraction = 0.66;
+
+// "(x0, y0), (x1, y1), ..." for messages.
+std::string describe_corners(const NodeSets& nodes, const CellComplex& cells, std::size_t p) {
+  std::string text;
+  for (const std::int32_t node : cells.corners(p))
+    text += fmt::format("{}({:.6g}, {:.6g})", text.empty() ? "" : ", ",
+                        nodes.sph_nodes.position[0][node], nodes.sph_nodes.position[1][node]);
+  return text;
+}
 
 struct Box {
   Vec3 min{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), 0.0};
@@ -29,36 +45,6 @@ Box bounding_box(const GeometrySpec& geometry, int dimension) {
         box.max[a] = std::max(box.max[a], vertex[a]);
       }
   return box;
-}
-
-double distance_to_segment(double px, double py, const Vec3& a, const Vec3& b) {
-  const double ex = b[0] - a[0], ey = b[1] - a[1];
-  const double length_squared = ex * ex + ey * ey;
-  double s = length_squared > 0.0 ? ((px - a[0]) * ex + (py - a[1]) * ey) / length_squared : 0.0;
-  s = std::clamp(s, 0.0, 1.0);
-  return std::hypot(px - (a[0] + s * ex), py - (a[1] + s * ey));
-}
-
-bool shape_contains(const ShapeSpec& shape, int dimension, const Vec3& x, double tolerance) {
-  switch (shape.kind) {
-    case ShapeSpec::Kind::Segment:
-      return x[0] >= shape.vertices[0][0] - tolerance && x[0] <= shape.vertices[1][0] + tolerance;
-    case ShapeSpec::Kind::Rectangle:
-      for (int a = 0; a < dimension; ++a)
-        if (x[a] < shape.vertices[0][a] - tolerance || x[a] > shape.vertices[1][a] + tolerance)
-          return false;
-      return true;
-    case ShapeSpec::Kind::Polygon:
-      return polygon_contains(shape.vertices, x[0], x[1], tolerance);
-  }
-  return false;
-}
-
-// Index of the last shape containing x (later shapes override earlier ones), or -1.
-int covering_shape(const GeometrySpec& geometry, int dimension, const Vec3& x, double tolerance) {
-  for (int s = static_cast<int>(geometry.shapes.size()) - 1; s >= 0; --s)
-    if (shape_contains(geometry.shapes[s], dimension, x, tolerance)) return s;
-  return -1;
 }
 
 void check_vertices_on_lattice(const GeometrySpec& geometry, int dimension, const Vec3& origin) {
@@ -91,8 +77,23 @@ void check_vertices_on_lattice(const GeometrySpec& geometry, int dimension, cons
   }
 }
 
-/// A point group picks its nearest node; a point more than half a spacing (along some axis) from
-/// every node lies outside the body or in a hole, and snapping it would silently move it.
+// True if (x, y) lies in a cell of the complex or within `distance` of one.
+bool near_a_cell(const NodeSets& nodes, double x, double y, double distance) {
+  std::vector<Vec3> corners;
+  for (std::size_t p = 0; p < nodes.cells.cell_count(); ++p) {
+    corners.clear();
+    for (const std::int32_t node : nodes.cells.corners(p))
+      corners.push_back(nodes.sph_nodes.point(static_cast<std::size_t>(node)));
+    if (polygon_contains(corners, x, y, distance)) return true;
+  }
+  return false;
+}
+
+/// A point group picks its nearest node; a point more than half a spacing from the body lies
+/// outside it or in a hole, and snapping it would silently move it. On the lattice, "from the
+/// body" is "along some axis from every node". Triangle nodes are not on a grid: a point inside a
+/// triangle may lie farther than h/2 along an axis from each of its corners, so there the test is
+/// the distance to the cells (docs/theory.md §3.6).
 void refuse_point_off_the_body(const NodeSets& nodes, const GroupSpec& group, std::size_t nearest) {
   const PointCloud& points = nodes.sph_nodes;
   const double half = 0.5 * nodes.spacing * (1.0 + kLatticeTolerance);
@@ -103,6 +104,8 @@ void refuse_point_off_the_body(const NodeSets& nodes, const GroupSpec& group, st
     distance_squared += offset * offset;
     if (std::abs(offset) > half) within = false;
   }
+  const bool lattice = nodes.on_lattice();
+  if (!lattice) within = near_a_cell(nodes, group.point[0], group.point[1], half);
   if (within) return;
   const auto coordinates = [&](auto&& coordinate) {
     std::string text;
@@ -114,11 +117,12 @@ void refuse_point_off_the_body(const NodeSets& nodes, const GroupSpec& group, st
       group.where, "groups." + group.name + ".point",
       coordinates([&](int a) { return group.point[a]; }),
       fmt::format("the point is {:.6g} m from the nearest node (at {}), more than half a spacing "
-                  "(dx/2 = {:.6g} m) along an axis: it lies outside the body",
+                  "(dx/2 = {:.6g} m) {}: it lies outside the body",
                   std::sqrt(distance_squared),
                   coordinates([&](int a) { return points.position[a][nearest]; }),
-                  0.5 * nodes.spacing),
-      "a point within half a spacing, along every axis, of a node of the body");
+                  0.5 * nodes.spacing, lattice ? "along an axis" : "from every cell"),
+      lattice ? "a point within half a spacing, along every axis, of a node of the body"
+              : "a point within half a spacing of a cell of the body");
 }
 
 // Length (1D) or area (2D) of a shape, and its boundary length (2D).
@@ -145,10 +149,17 @@ std::pair<double, double> shape_measure(const ShapeSpec& shape, int dimension) {
 NodeEstimate estimate_node_sets(const GeometrySpec& geometry, int dimension) {
   NodeEstimate estimate;
   const double dx = geometry.spacing;
+  const bool triangles = geometry.cells == CellLayout::Triangles && dimension >= 2;
+  // Triangles: near-equilateral ones of edge a = kTriangleEdgeFraction dx (measured, §3.6), each
+  // of area sqrt(3)/4 a^2; Euler's formula gives nodes = (triangles + boundary nodes) / 2 + 1.
+  const double edge = kTriangleEdgeFraction * dx;
   for (std::size_t s = 0; s < geometry.shapes.size(); ++s) {
     const auto [measure, boundary] = shape_measure(geometry.shapes[s], dimension);
-    const double cells = measure / std::pow(dx, dimension);
-    const double nodes = dimension < 2 ? cells + 1.0 : cells + 0.5 * boundary / dx + 1.0;
+    const double cells = triangles ? measure / (0.25 * std::sqrt(3.0) * edge * edge)
+                                   : measure / std::pow(dx, dimension);
+    const double nodes = triangles       ? 0.5 * (cells + boundary / edge) + 1.0
+                         : dimension < 2 ? cells + 1.0
+                                         : cells + 0.5 * boundary / dx + 1.0;
     estimate.sph_nodes += nodes;
     estimate.stress_points += cells;
     if (nodes > estimate.largest_shape_nodes) {
@@ -156,6 +167,7 @@ NodeEstimate estimate_node_sets(const GeometrySpec& geometry, int dimension) {
       estimate.largest_shape = s;
     }
   }
+  if (triangles) return estimate;  // no lattice, no lookup over the bounding box
   const Box box = bounding_box(geometry, dimension);
   estimate.lattice_points = 1.0;
   for (int a = 0; a < dimension; ++a)
@@ -165,21 +177,28 @@ NodeEstimate estimate_node_sets(const GeometrySpec& geometry, int dimension) {
   return estimate;
 }
 
-bool polygon_contains(const std::vector<Vec3>& vertices, double x, double y, double tolerance) {
-  const std::size_t n = vertices.size();
-  for (std::size_t k = 0; k < n; ++k)
-    if (distance_to_segment(x, y, vertices[k], vertices[(k + 1) % n]) <= tolerance) return true;
-  // Even-odd ray casting towards +x.
-  bool inside = false;
-  for (std::size_t k = 0, previous = n - 1; k < n; previous = k++) {
-    const Vec3& a = vertices[k];
-    const Vec3& b = vertices[previous];
-    if ((a[1] > y) != (b[1] > y)) {
-      const double crossing = a[0] + (y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
-      if (x < crossing) inside = !inside;
-    }
+void check_cells(const NodeSets& nodes, const GeometrySpec& geometry) {
+  const CellComplex& cells = nodes.cells;
+  for (std::size_t p = 0; p < cells.cell_count(); ++p) {
+    const CellCorners corners = cells.corner_positions(nodes.sph_nodes, p);
+    const double measure = cell_measure(cells.kind(p), corners);
+    const double quality = cell_quality(cells.kind(p), corners);
+    if (measure > 0.0 && quality >= kMinimumCellQuality) continue;
+    const auto centroid = cell_centroid(cells.kind(p), corners);
+    const int shape =
+        covering_shape(geometry, nodes.dimension, centroid, kSpacingTolerance * nodes.spacing);
+    const SourceLocation& where = shape >= 0 ? geometry.shapes[shape].where : geometry.where;
+    throw InputError(
+        where, "geometry.shapes", shape >= 0 ? fmt::format("shape {}", shape + 1) : "",
+        fmt::format("the {} {} with corners {} {} (signed measure {:.6g} m^{}, smallest corner "
+                    "sine {:.3g})",
+                    kind_name(cells.kind(p)), p, describe_corners(nodes, cells, p),
+                    measure <= 0.0 ? "is degenerate or inverted" : "is a sliver", measure,
+                    nodes.dimension, quality),
+        fmt::format("cells of positive measure whose smallest corner has a sine of at least {:.3g} "
+                    "(1 degree): a finer spacing, or no vertex angle that sharp",
+                    kMinimumCellQuality));
   }
-  return inside;
 }
 
 std::int32_t NodeSets::node_at(const LatticeIndex& index) const {
@@ -210,13 +229,7 @@ NodeSets build_node_sets(const GeometrySpec& geometry, int dimension,
         static_cast<std::int32_t>(std::lround((box.max[a] - box.min[a]) / dx)) + 1;
 
   auto material_of_shape = [&](int shape) {
-    const auto it =
-        std::find(material_names.begin(), material_names.end(), geometry.shapes[shape].material);
-    if (it == material_names.end())
-      throw InputError(geometry.shapes[shape].where, "geometry.shapes.material",
-                       geometry.shapes[shape].material, "unknown material",
-                       "a name defined under 'materials'");
-    return static_cast<std::int32_t>(it - material_names.begin());
+    return shape_material(geometry, shape, material_names);
   };
   auto lattice_position = [&](const LatticeIndex& index, double shift) {
     Vec3 x{};

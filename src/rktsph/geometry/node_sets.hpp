@@ -1,5 +1,6 @@
 // Geometry to nodes: the SPH nodes on a square lattice of spacing dx (boundary nodes included) and
-// the stress points at the cell centres (2D) or mid-points (1D), docs/theory.md §3.1.
+// the stress points at the cell centres (2D) or mid-points (1D), docs/theory.md §3.1. The triangle
+// builder (triangle_mesher.hpp, §3.6) fills the same NodeSets without the lattice's fields.
 #pragma once
 
 #include <array>
@@ -10,6 +11,7 @@
 
 #include "rktsph/case/case_description.hpp"
 #include "rktsph/core/point_cloud.hpp"
+#include "rktsph/geometry/shapes.hpp"
 #include "rktsph/mesh/cell_complex.hpp"
 #include "rktsph/mesh/outline.hpp"
 
@@ -19,7 +21,9 @@ using LatticeIndex = std::array<std::int32_t, 3>;
 
 struct NodeSets {
   int dimension = 1;
-  double spacing = 0.0;                               ///< dx [m]
+  double spacing = 0.0;  ///< dx [m]; for triangles, the longest edge allowed
+  // The lattice's own fields (origin, lattice_size, node_index, stress_point_index, node_lookup)
+  // stay empty, or at their defaults, for triangles: nothing outside validation/ reads them.
   Vec3 origin{};                                      ///< position of lattice index (0, 0, 0)
   std::array<std::int32_t, 3> lattice_size{1, 1, 1};  ///< lattice extent, in nodes, per axis
 
@@ -33,6 +37,9 @@ struct NodeSets {
   /// The boundary facets of the cells, with normals on the reference configuration.
   Outline outline;
   std::vector<std::string> material_names;
+
+  /// True for the lattice builder's node sets (the lattice fields below are filled).
+  bool on_lattice() const { return !node_lookup.empty(); }
 
   /// SPH node at a lattice index, or -1 if there is none.
   std::int32_t node_at(const LatticeIndex& index) const;
@@ -52,6 +59,8 @@ struct NodeEstimate {
   double largest_shape_nodes = 0.0;
   std::size_t largest_shape = 0;  ///< index into geometry.shapes
 };
+/// For geometry.cells = triangles, the counts of a mesh of equilateral triangles of the edge that
+/// gives a refined mesh's count (about 2/3 of the spacing), and no lattice points (no lookup).
 NodeEstimate estimate_node_sets(const GeometrySpec& geometry, int dimension);
 
 /// Fills the shapes of `geometry` with nodes. Every shape vertex must be a lattice point so that
@@ -64,7 +73,15 @@ NodeSets build_node_sets(const GeometrySpec& geometry, int dimension,
 std::map<std::string, std::vector<std::int32_t>> select_groups(
     const NodeSets& nodes, const std::vector<GroupSpec>& groups);
 
-/// True if (x, y) lies inside the polygon or on its boundary (within `tolerance`).
-bool polygon_contains(const std::vector<Vec3>& vertices, double x, double y, double tolerance);
+/// The smallest cell quality (cell_quality: the smallest corner's sine) a built complex may have:
+/// sin 1°. The triangle mesher guarantees about 20.7° except at sharper input corners; a cell
+/// below this is a sliver whose corner Jacobians, and so its stress point's gradients, are
+/// nearly singular (docs/theory.md §3.6).
+inline constexpr double kMinimumCellQuality = 0.0174524064372835;
+
+/// Refuses a complex with a cell of non-positive measure (degenerate or inverted) or of quality
+/// below kMinimumCellQuality: InputError at the shape covering the cell's centroid (at the
+/// geometry section if none does).
+void check_cells(const NodeSets& nodes, const GeometrySpec& geometry);
 
 }  // namespace rktsph

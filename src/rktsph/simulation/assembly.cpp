@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "rktsph/case/computed_defaults.hpp"
+#include "rktsph/geometry/triangle_mesher.hpp"
 #include "rktsph/materials/material_factory.hpp"
 
 namespace rktsph {
@@ -274,7 +275,10 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
     materials.push_back(create_material(block));
     material_names.push_back(name);
   }
-  nodes_ = build_node_sets(description_.geometry, description_.dimension, material_names);
+  // The cells the case asks for (docs/theory.md §3.1, §3.6): both builders fill the same NodeSets.
+  nodes_ = description_.geometry.cells == CellLayout::Triangles
+               ? build_triangle_node_sets(description_.geometry, material_names)
+               : build_node_sets(description_.geometry, description_.dimension, material_names);
   groups_ = select_groups(nodes_, description_.groups);
 
   const NumericsSpec& numerics = description_.numerics;

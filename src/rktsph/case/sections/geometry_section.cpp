@@ -1,5 +1,5 @@
-// The `geometry` section: the lattice spacing and the shapes it fills (docs/input-reference.md,
-// "geometry").
+// The `geometry` section: the spacing, the kind of cells and the shapes they fill
+// (docs/input-reference.md, "geometry").
 #include <fmt/format.h>
 
 #include "rktsph/case/sections/sections.hpp"
@@ -119,10 +119,28 @@ ShapeSpec read_shape(const YamlNode& node, Reading& reading) {
   return shape;
 }
 
+// The cells the shapes are cut into (docs/theory.md §3.1, §3.6); triangles are 2D only.
+Key<GeometrySpec> cells_key() {
+  Key<GeometrySpec> key = choice_key<GeometrySpec, CellLayout>(
+      "cells", &GeometrySpec::cells,
+      {{"lattice", CellLayout::Lattice}, {"triangles", CellLayout::Triangles}},
+      "Square lattice cells (shape vertices on lattice points), or triangles of edges at most "
+      "spacing with vertices anywhere (2D only).");
+  const auto read_choice = key.read;
+  key.read = [read_choice](const YamlNode& node, GeometrySpec& geometry, Reading& reading) {
+    read_choice(node, geometry, reading);
+    if (geometry.cells == CellLayout::Triangles)
+      reject_unless_2d(node, reading.so_far.dimension, "'cells: triangles' is");
+  };
+  return key;
+}
+
 const KeyTable<GeometrySpec>& geometry_keys() {
   static const KeyTable<GeometrySpec> keys = {
       number_key<GeometrySpec>("spacing", &GeometrySpec::spacing, NumberRange::positive(), "m",
-                               "Lattice spacing dx.", true),
+                               "Lattice spacing dx; with cells: triangles, the longest edge.",
+                               true),
+      cells_key(),
       section_key<GeometrySpec>(
           "shapes", "list", "required", "≥ 1 item",
           "The shapes, in order; where they overlap, the later shape's material wins.",

@@ -1,0 +1,214 @@
+#include "rktsph/geometry/triangle_mesher.hpp"
+
+// CGAL's headers are found under /usr/include, a system directory, so their own warnings are not
+// ours (-Werror stays on for this file).
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_size_criteria_2.h>
+#include <CGAL/Delaunay_mesh_vertex_base_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <utility>
+
+#include "rktsph/geometry/shapes.hpp"
+#include "rktsph/mesh/cell_geometry.hpp"
+
+namespace rktsph {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Delaunay_mesh_vertex_base_2<Kernel>;
+using FaceBase = CGAL::Delaunay_mesh_face_base_2<Kernel>;
+using DataStructure = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
+// Exact_predicates_tag: constraints of overlapping shapes may cross; their intersection points
+// are then constructed (inexactly) and become vertices.
+using Triangulation =
+    CGAL::Constrained_Delaunay_triangulation_2<Kernel, DataStructure, CGAL::Exact_predicates_tag>;
+using Criteria = CGAL::Delaunay_mesh_size_criteria_2<Triangulation>;
+using Face = Triangulation::Face_handle;
+using Vertex = Triangulation::Vertex_handle;
+using Point = Kernel::Point_2;
+
+// The closed outline of a 2D shape, vertex by vertex.
+std::vector<Point> shape_outline(const ShapeSpec& shape) {
+  const std::vector<Vec3>& v = shape.vertices;
+  if (shape.kind == ShapeSpec::Kind::Rectangle)
+    return {Point(v[0][0], v[0][1]), Point(v[1][0], v[0][1]), Point(v[1][0], v[1][1]),
+            Point(v[0][0], v[1][1])};
+  std::vector<Point> points;
+  for (const Vec3& vertex : v)
+    points.emplace_back(vertex[0], vertex[1]);
+  return points;
+}
+
+Vec3 centroid_of(const Face& face) {
+  Vec3 c{};
+  for (int k = 0; k < 3; ++k) {
+    c[0] += face->vertex(k)->point().x() / 3.0;
+    c[1] += face->vertex(k)->point().y() / 3.0;
+  }
+  return c;
+}
+
+double area_of(const Face& face) {
+  return CGAL::to_double(
+      CGAL::area(face->vertex(0)->point(), face->vertex(1)->point(), face->vertex(2)->point()));
+}
+
+// Marks the faces of the unrefined triangulation that lie in the union of the shapes. Every shape
+// edge is a constraint, so each region the constraints enclose lies wholly inside or wholly
+// outside every shape: one point per region decides it, the centroid of its largest face (the
+// one least likely to be misjudged by rounding). The space between disjoint shapes is such a
+// region, outside all of them, and stays out of the mesh (docs/theory.md §3.6).
+void mark_domain(Triangulation& triangulation, const GeometrySpec& geometry) {
+  std::map<Face, std::size_t> region;
+  std::vector<Face> largest;
+  std::vector<double> largest_area;
+  std::vector<Face> stack;
+  for (const Face start : triangulation.finite_face_handles()) {
+    if (region.count(start) != 0) continue;
+    const std::size_t id = largest.size();
+    largest.push_back(start);
+    largest_area.push_back(area_of(start));
+    region[start] = id;
+    stack.push_back(start);
+    while (!stack.empty()) {
+      const Face face = stack.back();
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k) {
+        const Face next = face->neighbor(k);
+        if (face->is_constrained(k) || triangulation.is_infinite(next) || region.count(next) != 0)
+          continue;
+        region[next] = id;
+        stack.push_back(next);
+        const double area = area_of(next);
+        if (area > largest_area[id]) {
+          largest_area[id] = area;
+          largest[id] = next;
+        }
+      }
+    }
+  }
+  std::vector<bool> inside(largest.size());
+  for (std::size_t id = 0; id < largest.size(); ++id)
+    inside[id] = covering_shape(geometry, 2, centroid_of(largest[id]), 0.0) >= 0;
+  for (const auto& [face, id] : region)
+    face->set_in_domain(inside[id]);
+}
+
+}  // namespace
+
+NodeSets build_triangle_node_sets(const GeometrySpec& geometry,
+                                  const std::vector<std::string>& material_names) {
+  const double h = geometry.spacing;
+  const double tolerance = kSpacingTolerance * h;
+  Triangulation triangulation;
+  for (const ShapeSpec& shape : geometry.shapes)
+    if (shape.kind == ShapeSpec::Kind::Segment)
+      throw InputError(shape.where, "geometry.cells", "triangles",
+                       "triangle cells exist only in 2D", "lattice in 1D");
+  try {
+    for (const ShapeSpec& shape : geometry.shapes) {
+      const std::vector<Point> outline = shape_outline(shape);
+      for (std::size_t k = 0; k < outline.size(); ++k)
+        triangulation.insert_constraint(outline[k], outline[(k + 1) % outline.size()]);
+    }
+    mark_domain(triangulation, geometry);
+    // Edges at most h; angles at least arcsin(sqrt(B)) but where an input angle is smaller.
+    CGAL::refine_Delaunay_mesh_2(triangulation, Criteria(kTriangleShapeBound, h), true);
+  } catch (const CGAL::Failure_exception& failure) {
+    // A CGAL precondition the reader's checks let through (e.g. coordinates so large that the
+    // inexact constructions overflow): the shapes' fault, said as such rather than a crash.
+    throw InputError(
+        geometry.where, "geometry.shapes", "",
+        fmt::format("the triangle mesher (CGAL) failed on these shapes: {}", failure.what()),
+        "shapes of moderate coordinates whose edges cross at clear angles");
+  }
+
+  // The triangles kept: those of the domain whose centroid a shape covers (the material's).
+  std::vector<std::pair<Face, std::int32_t>> kept;
+  for (const Face face : triangulation.finite_face_handles()) {
+    if (!face->is_in_domain()) continue;
+    const int shape = covering_shape(geometry, 2, centroid_of(face), tolerance);
+    if (shape >= 0) kept.emplace_back(face, shape_material(geometry, shape, material_names));
+  }
+  if (kept.empty())
+    throw InputError(geometry.where, "geometry.shapes", "", "the shapes hold no triangle",
+                     "shapes of non-zero area");
+
+  // Nodes: the corners of the kept triangles, numbered by (y, x) whatever CGAL's order.
+  std::vector<Vertex> corners;
+  for (const auto& [face, material] : kept)
+    for (int k = 0; k < 3; ++k)
+      corners.push_back(face->vertex(k));
+  const auto by_y_then_x = [](const Vertex& a, const Vertex& b) {
+    const Point& p = a->point();
+    const Point& q = b->point();
+    return p.y() != q.y() ? p.y() < q.y() : p.x() < q.x();
+  };
+  std::sort(corners.begin(), corners.end(), by_y_then_x);
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  std::map<Vertex, std::int32_t> node_of;
+  for (std::size_t i = 0; i < corners.size(); ++i)
+    node_of[corners[i]] = static_cast<std::int32_t>(i);
+
+  // Triangles: corners counter-clockwise (as CGAL keeps them) from the lowest-numbered one, in
+  // the order of their corner numbers.
+  struct Triangle {
+    std::array<std::int32_t, 3> corners;
+    std::int32_t material;
+  };
+  std::vector<Triangle> triangles;
+  triangles.reserve(kept.size());
+  for (const auto& [face, material] : kept) {
+    std::array<std::int32_t, 3> c{node_of.at(face->vertex(0)), node_of.at(face->vertex(1)),
+                                  node_of.at(face->vertex(2))};
+    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+    triangles.push_back({c, material});
+  }
+  std::sort(triangles.begin(), triangles.end(),
+            [](const Triangle& a, const Triangle& b) { return a.corners < b.corners; });
+
+  NodeSets nodes;
+  nodes.dimension = 2;
+  nodes.spacing = h;
+  nodes.material_names = material_names;
+  nodes.sph_nodes.dimension = 2;
+  nodes.stress_points.dimension = 2;
+  for (const Vertex& vertex : corners) {
+    const Vec3 x{vertex->point().x(), vertex->point().y(), 0.0};
+    nodes.sph_nodes.push_back(x, 0.0);
+    const int shape = covering_shape(geometry, 2, x, tolerance);
+    // A corner is in its triangles, so a shape covers it; -1 only if rounding put it a hair
+    // outside, when the material of its first triangle stands in (filled in below).
+    nodes.node_material.push_back(shape >= 0 ? shape_material(geometry, shape, material_names)
+                                             : -1);
+  }
+  // Stress points at the centroids, with the triangle's area; each node gets a third of the area
+  // of each of its triangles (lumped, so the node volumes add up to the body's area, §3.6).
+  nodes.cells = CellComplex(2, nodes.sph_nodes.size());
+  const PointCloud& points = nodes.sph_nodes;
+  for (const Triangle& triangle : triangles) {
+    const CellCorners c = gather_corners(points, triangle.corners);
+    const double area = cell_measure(CellKind::Triangle, c);
+    nodes.stress_points.push_back(cell_centroid(CellKind::Triangle, c), area);
+    for (const std::int32_t node : triangle.corners) {
+      nodes.sph_nodes.volume[static_cast<std::size_t>(node)] += area / 3.0;
+      if (nodes.node_material[static_cast<std::size_t>(node)] < 0)
+        nodes.node_material[static_cast<std::size_t>(node)] = triangle.material;
+    }
+    nodes.cells.add_cell(CellKind::Triangle, triangle.corners, triangle.material);
+  }
+  nodes.cells.finish(nodes.sph_nodes);
+  nodes.outline = Outline(nodes.cells, nodes.sph_nodes);
+  check_cells(nodes, geometry);
+  return nodes;
+}
+
+}  // namespace rktsph
