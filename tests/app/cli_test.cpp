@@ -254,11 +254,14 @@ TEST(CommandLine, CheckBuildsATriangleMeshAndARunOnItSaysWhatIsMissing) {
                            " --set geometry.cells=triangles --set numerics.hourglass.stiffness=0");
   EXPECT_EQ(check.status, 0) << check.output;
   EXPECT_NE(check.output.find("OK ("), std::string::npos) << check.output;
-  // The hourglass stiffness (on by default in 2D) needs quadrilaterals: a clear error, no crash.
+  // The hourglass stiffness (on by default in 2D) needs quadrilaterals: an input error at the
+  // key, saying what to set, no crash.
   const Result stiffness = run("check " + slope + " --set geometry.cells=triangles");
-  EXPECT_EQ(stiffness.status, 3) << stiffness.output;
-  EXPECT_NE(stiffness.output.find("is a triangle"), std::string::npos) << stiffness.output;
-  EXPECT_NE(stiffness.output.find("needs quadrilaterals"), std::string::npos) << stiffness.output;
+  EXPECT_EQ(stiffness.status, 2) << stiffness.output;
+  EXPECT_NE(stiffness.output.find("geometry.cells"), std::string::npos) << stiffness.output;
+  EXPECT_NE(stiffness.output.find("quadrilaterals only"), std::string::npos) << stiffness.output;
+  EXPECT_NE(stiffness.output.find("numerics.hourglass.stiffness: 0"), std::string::npos)
+      << stiffness.output;
 }
 
 TEST(CommandLine, MisspelledKeyNamesFileLineAndKey) {
