@@ -6,6 +6,8 @@
 // outside the timed loop; building them is timed by a separate benchmark.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -53,7 +55,8 @@ OperatorOptions operator_options(const NodeSets& nodes, double h_over_dx, bool m
   options.kernel = Kernel(KernelType::CubicSpline, 2);
   options.smoothing_length = h_over_dx * nodes.spacing;
   if (mirrors) {
-    const double top = nodes.spacing * (nodes.lattice_size[1] - 1);
+    const auto& y = nodes.sph_nodes.position[1];
+    const double top = *std::max_element(y.begin(), y.end());
     options.mirrors = {MirrorPlane{1, 0.0}, MirrorPlane{1, top}};
   }
   return options;

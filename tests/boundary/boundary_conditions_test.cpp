@@ -7,6 +7,7 @@
 
 #include <algorithm>
 
+#include "../support/lattices.hpp"
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
@@ -31,8 +32,8 @@ time: {end: 0.01}
 )";
 
 std::int32_t node_at(const Simulation& simulation, double x, double y) {
-  return simulation.nodes().node_at(
-      {static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), 0});
+  return test::lattice_node(simulation.nodes(), static_cast<std::int32_t>(x),
+                            static_cast<std::int32_t>(y));
 }
 
 /// The normals along which the node's stress increment is projected (none off the surface).

@@ -52,8 +52,8 @@ TEST(PerimeterNormals, ABentFaceTakesTheChordOfItsNeighbours) {
   // Lift the middle node of the top face by dx/2: its neighbours along the face stay, so its
   // normal stays +y, while each neighbour's turns towards the bump by atan(0.25 / 1).
   PointCloud moved = nodes.sph_nodes;
-  const std::int32_t top_middle = nodes.node_at({2, 2, 0});
-  const std::int32_t top_right = nodes.node_at({3, 2, 0});
+  const std::int32_t top_middle = test::lattice_node(nodes, 2, 2);
+  const std::int32_t top_right = test::lattice_node(nodes, 3, 2);
   moved.position[1][static_cast<std::size_t>(top_middle)] += 0.25;
   perimeter.update(moved, surface);
   for (std::size_t k = 0; k < surface.size(); ++k) {

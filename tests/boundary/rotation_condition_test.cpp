@@ -11,6 +11,7 @@
 
 #include "../support/case_text.hpp"
 #include "../support/elastic_block.hpp"
+#include "../support/lattices.hpp"
 #include "rktsph/boundary/boundary_conditions.hpp"
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
@@ -94,7 +95,7 @@ TEST(RotationCondition, ImposesBothComponentsLikeFixed) {
   }
   // The plate's left face (x = 0): both traction components are reactions, none projected.
   const SurfaceSet& surface = conditions.surface();
-  const std::int32_t left = simulation.nodes().node_at({0, 2, 0});
+  const std::int32_t left = test::lattice_node(simulation.nodes(), 0, 2);
   const auto k = std::find(surface.node.begin(), surface.node.end(), left);
   ASSERT_NE(k, surface.node.end());
   const auto index = static_cast<std::size_t>(k - surface.node.begin());

@@ -23,7 +23,7 @@ TEST(SurfaceSet, LatticeFacesAreTheMissingNeighbours) {
   outline_surface(nodes.cells, nodes.outline, nodes.sph_nodes, mirror_axes, surface);
   ASSERT_EQ(surface.size(), 6u);
   EXPECT_EQ(surface.facet_count(), 2u * 4u + 2u * 2u - 2u);  // 4 corners x 2, 2 edge middles x 1
-  const std::int32_t corner = nodes.node_at({0, 0, 0});
+  const std::int32_t corner = test::lattice_node(nodes, 0, 0);
   const auto k = static_cast<std::size_t>(
       std::find(surface.node.begin(), surface.node.end(), corner) - surface.node.begin());
   ASSERT_EQ(surface.facets_end(k) - surface.facets_begin(k), 2);
@@ -32,7 +32,7 @@ TEST(SurfaceSet, LatticeFacesAreTheMissingNeighbours) {
 
   // A mirror plane y = 0 closes the bottom faces.
   for (std::int32_t i = 0; i < 3; ++i)
-    mirror_axes[static_cast<std::size_t>(nodes.node_at({i, 0, 0}))] = 0b10;
+    mirror_axes[static_cast<std::size_t>(test::lattice_node(nodes, i, 0))] = 0b10;
   outline_surface(nodes.cells, nodes.outline, nodes.sph_nodes, mirror_axes, surface);
   EXPECT_EQ(surface.facet_count(), 10u - 3u);
 }
@@ -161,8 +161,8 @@ TEST(SurfaceSet, ConditionsOnATiltedSurfaceMakeItTractionFree) {
   Simulation simulation(read_case_text(kBlock, "block.yaml"));
   BoundaryConditions conditions(simulation.description(), simulation.nodes(), simulation.groups(),
                                 simulation.model());
-  const std::int32_t free_node = simulation.nodes().node_at({4, 1, 0});
-  const std::int32_t fixed_node = simulation.nodes().node_at({0, 1, 0});
+  const std::int32_t free_node = test::lattice_node(simulation.nodes(), 4, 1);
+  const std::int32_t fixed_node = test::lattice_node(simulation.nodes(), 0, 1);
   const double c30 = std::cos(std::numbers::pi / 6.0), s30 = std::sin(std::numbers::pi / 6.0);
   SurfaceSet tilted;
   tilted.clear();

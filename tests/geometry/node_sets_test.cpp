@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
+#include "../support/lattices.hpp"
 #include "../support/shapes.hpp"
 
 namespace rktsph {
@@ -39,11 +41,14 @@ TEST(NodeSets, RectangleCountsAndCellCentres) {
   EXPECT_EQ(nodes.stress_points.size(), 25u * 50u);
   // Every stress point is the centre of the four nodes around it.
   for (std::size_t p = 0; p < nodes.stress_points.size(); ++p) {
-    const LatticeIndex& corner = nodes.stress_point_index[p];
+    // The lower-left corner's column and row, from the point's position (origin (0, 0)).
+    const std::array<std::int32_t, 2> corner{
+        static_cast<std::int32_t>(std::lround(nodes.stress_points.position[0][p] / 0.04 - 0.5)),
+        static_cast<std::int32_t>(std::lround(nodes.stress_points.position[1][p] / 0.04 - 0.5))};
     double cx = 0.0, cy = 0.0;
     for (int dj = 0; dj <= 1; ++dj)
       for (int di = 0; di <= 1; ++di) {
-        const std::int32_t node = nodes.node_at({corner[0] + di, corner[1] + dj, 0});
+        const std::int32_t node = test::lattice_node(nodes, corner[0] + di, corner[1] + dj);
         ASSERT_GE(node, 0);
         cx += 0.25 * nodes.sph_nodes.position[0][node];
         cy += 0.25 * nodes.sph_nodes.position[1][node];

@@ -74,7 +74,7 @@ TEST(ConfigurationMotion, ReportsDistortedConcaveAndFoldedCells) {
   Configuration configuration = reference_configuration(nodes, 0.6);
   ConfigurationMotion motion(nodes);
   FieldArray u(2, nodes.sph_nodes.size());
-  const std::int32_t centre = nodes.node_at({1, 1, 0});
+  const std::int32_t centre = test::lattice_node(nodes, 1, 1);
   ASSERT_GE(centre, 0);
   // Moving the centre node 0.45 dx towards a corner leaves the cell there at a corner Jacobian of
   // 0.1 (distorted, not folded); 0.6 dx makes it an arrowhead (a negative corner Jacobian, area

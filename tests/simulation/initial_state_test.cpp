@@ -10,6 +10,7 @@
 
 #include "../support/case_text.hpp"
 #include "../support/elastic_block.hpp"
+#include "../support/lattices.hpp"
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
@@ -29,8 +30,8 @@ std::string block(const std::string& plane, const std::string& extra) {
 double field_at(const Simulation& simulation, int field, double x, double y) {
   const double dx = simulation.nodes().spacing;
   const std::int32_t node =
-      simulation.nodes().node_at({static_cast<std::int32_t>(std::lround(x / dx)),
-                                  static_cast<std::int32_t>(std::lround(y / dx)), 0});
+      test::lattice_node(simulation.nodes(), static_cast<std::int32_t>(std::lround(x / dx)),
+                         static_cast<std::int32_t>(std::lround(y / dx)));
   EXPECT_GE(node, 0) << x << ", " << y;
   return simulation.state().fields(field, static_cast<std::size_t>(node));
 }
@@ -83,7 +84,7 @@ TEST(InitialState, OneDimensionalBarTakesOnlyXx) {
   const std::string bar = test::free_bar();
   const Simulation simulation(
       read_case_text(bar + "initial_conditions: {stress: {xx: -7.0}}\n", "bar.yaml"));
-  const std::int32_t middle = simulation.nodes().node_at({10, 0, 0});
+  const std::int32_t middle = test::lattice_node(simulation.nodes(), 10, 0);
   EXPECT_DOUBLE_EQ(simulation.state().fields(simulation.model().stress_field(0, 0),
                                              static_cast<std::size_t>(middle)),
                    -7.0);

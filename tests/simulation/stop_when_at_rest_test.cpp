@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/elastic_block.hpp"
+#include "../support/lattices.hpp"
 #include "rktsph/simulation/quantities.hpp"
 #include "rktsph/simulation/simulation.hpp"
 #include "rktsph/simulation/stop_when_at_rest.hpp"
@@ -37,7 +38,7 @@ TEST(StopWhenAtRest, EndsADampedRunOnceTheBodyHasSettled) {
   const double modulus = 1.0e7 * 0.7 / (1.3 * 0.4);
   const double settlement = 2000.0 * 9.81 * 16.0 / (2.0 * modulus);
   const NodeSets& nodes = simulation.nodes();
-  const std::int32_t top = nodes.node_at({3, 4, 0});
+  const std::int32_t top = test::lattice_node(nodes, 3, 4);
   ASSERT_GE(top, 0);
   const double u_top = simulation.state().displacement(1, static_cast<std::size_t>(top));
   RecordProperty("settlement_ratio", std::to_string(-u_top / settlement));

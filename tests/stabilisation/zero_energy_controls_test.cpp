@@ -17,6 +17,7 @@
 #include <string>
 
 #include "../support/elastic_block.hpp"
+#include "../support/lattices.hpp"
 #include "../support/step_matrix.hpp"
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/core/error.hpp"
@@ -88,7 +89,7 @@ TEST(HourglassStiffness, LeavesLinearFieldsAndRigidRotationAloneAndResistsTheChe
   // The checkerboard u_x = U (-1)^(i+j): at an interior node -(16 k / (rho dx^2)) u_x (eq. 3.4).
   const double amplitude = 1e-3;
   for (std::size_t i = 0; i < n; ++i) {
-    const auto& index = nodes.node_index[i];
+    const auto index = test::lattice_index(nodes, i);
     displacement(0, i) = ((index[0] + index[1]) % 2 == 0 ? 1.0 : -1.0) * amplitude;
     displacement(1, i) = 0.0;
   }
@@ -97,9 +98,9 @@ TEST(HourglassStiffness, LeavesLinearFieldsAndRigidRotationAloneAndResistsTheChe
   const double k = epsilon * (kConstrained + kShear) / 12.0;
   int interior = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const auto& index = nodes.node_index[i];
-    if (index[0] == 0 || index[1] == 0 || index[0] == nodes.lattice_size[0] - 1 ||
-        index[1] == nodes.lattice_size[1] - 1)
+    const auto index = test::lattice_index(nodes, i);
+    if (index[0] == 0 || index[1] == 0 || index[0] == test::lattice_extent(nodes)[0] - 1 ||
+        index[1] == test::lattice_extent(nodes)[1] - 1)
       continue;
     EXPECT_NEAR(rate(0, i), -16.0 * k / kDensity * displacement(0, i), 1e-9 * k);
     EXPECT_NEAR(rate(1, i), 0.0, 1e-12);
@@ -152,16 +153,16 @@ TEST(StrainHourglassStiffness, NothingOnConsistentLinearFieldsAndFullStiffnessOn
   const double amplitude = 1e-4;
   const FieldArray mode = stress_after_one_step(
       [&](std::size_t i) {
-        return std::pair{(nodes.node_index[i][0] % 2 == 0 ? 1.0 : -1.0) * amplitude, 0.0};
+        return std::pair{(test::lattice_index(nodes, i)[0] % 2 == 0 ? 1.0 : -1.0) * amplitude, 0.0};
       },
       0.0, 0.0);
   // Force on an interior node of the mode: 4 epsilon_s M (2U/dx) / dx ... as an acceleration,
   // dv = -dt 4 epsilon_s M u_x / (rho dx^2) (one-point stiffness of the alternating strain).
   int interior = 0;
   for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i) {
-    const auto& index = nodes.node_index[i];
-    if (index[0] < 2 || index[1] < 2 || index[0] > nodes.lattice_size[0] - 3 ||
-        index[1] > nodes.lattice_size[1] - 3)
+    const auto index = test::lattice_index(nodes, i);
+    if (index[0] < 2 || index[1] < 2 || index[0] > test::lattice_extent(nodes)[0] - 3 ||
+        index[1] > test::lattice_extent(nodes)[1] - 3)
       continue;
     const double u = (index[0] % 2 == 0 ? 1.0 : -1.0) * amplitude;
     EXPECT_NEAR(mode(0, i), -dt * 4.0 * epsilon_s * kConstrained * u / kDensity,
@@ -200,9 +201,9 @@ double largest_strain_mismatch(const std::string& update) {
   const int xx = simulation.model().stress_field(0, 0), yy = simulation.model().stress_field(1, 1);
   double largest = 0.0, scale = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    const auto& index = nodes.node_index[i];
-    if (index[0] == 0 || index[0] == nodes.lattice_size[0] - 1 ||
-        index[1] == nodes.lattice_size[1] - 1)
+    const auto index = test::lattice_index(nodes, i);
+    if (index[0] == 0 || index[0] == test::lattice_extent(nodes)[0] - 1 ||
+        index[1] == test::lattice_extent(nodes)[1] - 1)
       continue;  // free sides and the loaded top: their normal stress is projected
     const double sxx = kConstrained * node_strain(0, i) + kLambda * node_strain(3, i);
     const double syy = kLambda * node_strain(0, i) + kConstrained * node_strain(3, i);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "../support/elastic_block.hpp"
+#include "../support/lattices.hpp"
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
@@ -301,7 +302,8 @@ TEST(OperatorRebuild, ClassifiesBoundaryNodesFromTheCellsAroundThem) {
   const NodeSets& nodes = simulation.nodes();
   const StepOperators& operators = simulation.step().operators();
   auto row_at = [&](std::int32_t i, std::int32_t j) {
-    return operators.node_to_boundary_row[static_cast<std::size_t>(nodes.node_at({i, j, 0}))];
+    return operators
+        .node_to_boundary_row[static_cast<std::size_t>(test::lattice_node(nodes, i, j))];
   };
   EXPECT_LT(row_at(6, 3), 0);
   EXPECT_GE(row_at(6, 8), 0);
@@ -309,7 +311,7 @@ TEST(OperatorRebuild, ClassifiesBoundaryNodesFromTheCellsAroundThem) {
   EXPECT_GE(row_at(0, 0), 0);
   EXPECT_GE(row_at(3, 8), 0);
   const auto& incomplete = operators.incomplete_nodes;
-  EXPECT_NE(std::find(incomplete.begin(), incomplete.end(), nodes.node_at({6, 3, 0})),
+  EXPECT_NE(std::find(incomplete.begin(), incomplete.end(), test::lattice_node(nodes, 6, 3)),
             incomplete.end());
 }
 

@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "../support/elastic_block.hpp"
+#include "../support/lattices.hpp"
 #include "../support/step_matrix.hpp"
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
@@ -51,7 +52,7 @@ TEST(ReentrantCorner, ToeIsNotABoundaryNodeButItsFaceNeighboursAre) {
   const NodeSets& nodes = simulation.nodes();
   const auto& to_row = simulation.step().operators().node_to_boundary_row;
   auto row_at = [&](std::int32_t i, std::int32_t j) {
-    return to_row[static_cast<std::size_t>(nodes.node_at({i, j, 0}))];
+    return to_row[static_cast<std::size_t>(test::lattice_node(nodes, i, j))];
   };
   EXPECT_LT(row_at(6, 3), 0);  // toe: three cells
   EXPECT_GE(row_at(7, 3), 0);  // on the lower free face

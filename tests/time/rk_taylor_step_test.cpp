@@ -15,6 +15,7 @@
 #include <tuple>
 
 #include "../support/elastic_block.hpp"
+#include "../support/lattices.hpp"
 #include "../support/step_matrix.hpp"
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
@@ -234,7 +235,7 @@ Simulation box(bool filter, const std::string& fields) {
 }
 
 double checkerboard_sign(const NodeSets& nodes, std::size_t i) {
-  const auto& index = nodes.node_index[i];
+  const auto index = test::lattice_index(nodes, i);
   return (index[0] + index[1]) % 2 ? -1.0 : 1.0;
 }
 

@@ -144,6 +144,23 @@ std::pair<double, double> shape_measure(const ShapeSpec& shape, int dimension) {
   return {0.5 * std::abs(twice_area), perimeter};
 }
 
+// The lattice the builder fills, private to it: an index per axis, and the node at each index.
+using LatticeIndex = std::array<std::int32_t, 3>;
+struct Lattice {
+  int dimension = 1;
+  std::array<std::int32_t, 3> size{1, 1, 1};  // extent, in nodes, per axis
+  std::vector<std::int32_t> node;             // node at each index (x fastest), -1 where none
+
+  std::int32_t at(const LatticeIndex& index) const {
+    std::size_t flat = 0;
+    for (int a = dimension - 1; a >= 0; --a) {
+      if (index[a] < 0 || index[a] >= size[a]) return -1;
+      flat = flat * static_cast<std::size_t>(size[a]) + static_cast<std::size_t>(index[a]);
+    }
+    return node[flat];
+  }
+};
+
 }  // namespace
 
 NodeEstimate estimate_node_sets(const GeometrySpec& geometry, int dimension) {
@@ -201,15 +218,6 @@ void check_cells(const NodeSets& nodes, const GeometrySpec& geometry) {
   }
 }
 
-std::int32_t NodeSets::node_at(const LatticeIndex& index) const {
-  std::size_t flat = 0;
-  for (int a = dimension - 1; a >= 0; --a) {
-    if (index[a] < 0 || index[a] >= lattice_size[a]) return -1;
-    flat = flat * static_cast<std::size_t>(lattice_size[a]) + static_cast<std::size_t>(index[a]);
-  }
-  return node_lookup[flat];
-}
-
 NodeSets build_node_sets(const GeometrySpec& geometry, int dimension,
                          const std::vector<std::string>& material_names) {
   NodeSets nodes;
@@ -222,11 +230,12 @@ NodeSets build_node_sets(const GeometrySpec& geometry, int dimension,
   const double dx = geometry.spacing;
   const double tolerance = kLatticeTolerance * dx;
   const Box box = bounding_box(geometry, dimension);
-  nodes.origin = box.min;
-  check_vertices_on_lattice(geometry, dimension, nodes.origin);
+  const Vec3 origin = box.min;  // the position of lattice index (0, 0, 0)
+  check_vertices_on_lattice(geometry, dimension, origin);
+  Lattice lattice;
+  lattice.dimension = dimension;
   for (int a = 0; a < dimension; ++a)
-    nodes.lattice_size[a] =
-        static_cast<std::int32_t>(std::lround((box.max[a] - box.min[a]) / dx)) + 1;
+    lattice.size[a] = static_cast<std::int32_t>(std::lround((box.max[a] - box.min[a]) / dx)) + 1;
 
   auto material_of_shape = [&](int shape) {
     return shape_material(geometry, shape, material_names);
@@ -234,13 +243,13 @@ NodeSets build_node_sets(const GeometrySpec& geometry, int dimension,
   auto lattice_position = [&](const LatticeIndex& index, double shift) {
     Vec3 x{};
     for (int a = 0; a < dimension; ++a)
-      x[a] = nodes.origin[a] + (index[a] + shift) * dx;
+      x[a] = origin[a] + (index[a] + shift) * dx;
     return x;
   };
 
-  const std::int32_t nx = nodes.lattice_size[0];
-  const std::int32_t ny = dimension >= 2 ? nodes.lattice_size[1] : 1;
-  nodes.node_lookup.assign(static_cast<std::size_t>(nx) * ny, -1);
+  const std::int32_t nx = lattice.size[0];
+  const std::int32_t ny = dimension >= 2 ? lattice.size[1] : 1;
+  lattice.node.assign(static_cast<std::size_t>(nx) * ny, -1);
   const double node_volume = std::pow(dx, dimension);
   for (std::int32_t j = 0; j < ny; ++j)
     for (std::int32_t i = 0; i < nx; ++i) {
@@ -248,10 +257,9 @@ NodeSets build_node_sets(const GeometrySpec& geometry, int dimension,
       const Vec3 x = lattice_position(index, 0.0);
       const int shape = covering_shape(geometry, dimension, x, tolerance);
       if (shape < 0) continue;
-      nodes.node_lookup[static_cast<std::size_t>(j) * nx + i] =
+      lattice.node[static_cast<std::size_t>(j) * nx + i] =
           static_cast<std::int32_t>(nodes.sph_nodes.size());
       nodes.sph_nodes.push_back(x, node_volume);
-      nodes.node_index.push_back(index);
       nodes.node_material.push_back(material_of_shape(shape));
     }
 
@@ -259,12 +267,13 @@ NodeSets build_node_sets(const GeometrySpec& geometry, int dimension,
   // centre lies inside the body (the second test matters only for concave outlines).
   const std::int32_t cells_y = dimension >= 2 ? ny - 1 : 1;
   std::vector<std::int32_t> cell_material;
+  std::vector<LatticeIndex> lower_corner;  // of each cell
   for (std::int32_t j = 0; j < cells_y; ++j)
     for (std::int32_t i = 0; i + 1 < nx; ++i) {
       bool complete = true;
       for (std::int32_t dj = 0; dj <= (dimension >= 2 ? 1 : 0); ++dj)
         for (std::int32_t di = 0; di <= 1; ++di)
-          if (nodes.node_at({i + di, j + dj, 0}) < 0) complete = false;
+          if (lattice.at({i + di, j + dj, 0}) < 0) complete = false;
       if (!complete) continue;
       const LatticeIndex index{i, j, 0};
       Vec3 centre = lattice_position(index, 0.5);
@@ -272,23 +281,22 @@ NodeSets build_node_sets(const GeometrySpec& geometry, int dimension,
       const int shape = covering_shape(geometry, dimension, centre, tolerance);
       if (shape < 0) continue;
       nodes.stress_points.push_back(centre, node_volume);
-      nodes.stress_point_index.push_back(index);
+      lower_corner.push_back(index);
       cell_material.push_back(material_of_shape(shape));
     }
   // The lattice cells as a complex: corners counter-clockwise from the lower left (2D), left to
   // right (1D).
   nodes.cells = CellComplex(dimension, nodes.sph_nodes.size());
   for (std::size_t p = 0; p < nodes.stress_points.size(); ++p) {
-    const LatticeIndex& lower = nodes.stress_point_index[p];
+    const LatticeIndex& lower = lower_corner[p];
     if (dimension < 2) {
-      const std::array<std::int32_t, 2> corners{nodes.node_at(lower),
-                                                nodes.node_at({lower[0] + 1, 0, 0})};
+      const std::array<std::int32_t, 2> corners{lattice.at(lower),
+                                                lattice.at({lower[0] + 1, 0, 0})};
       nodes.cells.add_cell(CellKind::Segment, corners, cell_material[p]);
     } else {
-      const std::array<std::int32_t, 4> corners{nodes.node_at(lower),
-                                                nodes.node_at({lower[0] + 1, lower[1], 0}),
-                                                nodes.node_at({lower[0] + 1, lower[1] + 1, 0}),
-                                                nodes.node_at({lower[0], lower[1] + 1, 0})};
+      const std::array<std::int32_t, 4> corners{
+          lattice.at(lower), lattice.at({lower[0] + 1, lower[1], 0}),
+          lattice.at({lower[0] + 1, lower[1] + 1, 0}), lattice.at({lower[0], lower[1] + 1, 0})};
       nodes.cells.add_cell(CellKind::Quadrilateral, corners, cell_material[p]);
     }
   }

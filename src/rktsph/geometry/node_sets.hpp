@@ -17,35 +17,24 @@
 
 namespace rktsph {
 
-using LatticeIndex = std::array<std::int32_t, 3>;
-
 struct NodeSets {
   int dimension = 1;
   double spacing = 0.0;  ///< dx [m]; for triangles, the longest edge allowed
-  // The lattice's own fields (origin, lattice_size, node_index, stress_point_index, node_lookup)
-  // stay empty, or at their defaults, for triangles: nothing outside validation/ reads them.
-  Vec3 origin{};                                      ///< position of lattice index (0, 0, 0)
-  std::array<std::int32_t, 3> lattice_size{1, 1, 1};  ///< lattice extent, in nodes, per axis
+  /// How the cells were made. Nothing downstream reads a lattice index: the lattice builder keeps
+  /// its indices to itself, and everything else works on the cells and the positions.
+  CellLayout layout = CellLayout::Lattice;
 
   PointCloud sph_nodes;
   PointCloud stress_points;
-  std::vector<LatticeIndex> node_index;          ///< lattice index of each SPH node
-  std::vector<LatticeIndex> stress_point_index;  ///< index of the cell's lower corner node
-  std::vector<std::int32_t> node_material;       ///< index into `material_names`
+  std::vector<std::int32_t> node_material;  ///< index into `material_names`
   /// The cells: cell p carries stress point p; its material is the one covering its centre.
   CellComplex cells;
   /// The boundary facets of the cells, with normals on the reference configuration.
   Outline outline;
   std::vector<std::string> material_names;
 
-  /// True for the lattice builder's node sets (the lattice fields below are filled).
-  bool on_lattice() const { return !node_lookup.empty(); }
-
-  /// SPH node at a lattice index, or -1 if there is none.
-  std::int32_t node_at(const LatticeIndex& index) const;
-
-  /// Dense lookup lattice -> node (size product of lattice_size), -1 where empty.
-  std::vector<std::int32_t> node_lookup;
+  /// True for the lattice builder's node sets: nodes on a square lattice of spacing dx.
+  bool on_lattice() const { return layout == CellLayout::Lattice; }
 };
 
 /// The size of a lattice before it is built, in double so that no count can overflow: the nodes

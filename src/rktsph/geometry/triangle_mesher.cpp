@@ -178,6 +178,7 @@ NodeSets build_triangle_node_sets(const GeometrySpec& geometry,
   NodeSets nodes;
   nodes.dimension = 2;
   nodes.spacing = h;
+  nodes.layout = CellLayout::Triangles;
   nodes.material_names = material_names;
   nodes.sph_nodes.dimension = 2;
   nodes.stress_points.dimension = 2;

@@ -259,11 +259,9 @@ double estimated_run_memory(ModelKind model, double sph_nodes, double lattice_po
 }
 
 double Assembly::estimated_memory() const {
-  double lattice_points = 1.0;
-  for (int a = 0; a < nodes_.dimension; ++a)
-    lattice_points *= nodes_.lattice_size[a];
+  // The lattice builder's lookup spans the shapes' bounding box (none for triangles).
   return estimated_run_memory(description_.model, static_cast<double>(nodes_.sph_nodes.size()),
-                              lattice_points, description_.numerics.h_over_dx);
+                              node_estimate_.lattice_points, description_.numerics.h_over_dx);
 }
 
 Assembly::Assembly(CaseDescription description, SimulationLimits limits)

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rktsph/core/error.hpp"
+#include "rktsph/validation/rest_checks.hpp"
 
 namespace rktsph {
 
@@ -401,18 +402,19 @@ std::vector<std::pair<double, double>> band_row_centres(const NodeSets& nodes,
                                                         std::span<const double> strain,
                                                         double threshold, double y_low,
                                                         double y_high, double x_min) {
-  const auto rows = static_cast<std::size_t>(nodes.lattice_size[1]);
+  const LatticeView view = lattice_view(nodes);
+  const auto rows = static_cast<std::size_t>(view.rows);
   std::vector<double> weight(rows, 0.0), moment(rows, 0.0);
   for (std::size_t k = 0; k < nodes.sph_nodes.size(); ++k) {
-    const double x = nodes.origin[0] + static_cast<double>(nodes.node_index[k][0]) * nodes.spacing;
+    const double x = view.origin_x + static_cast<double>(view.index[k][0]) * nodes.spacing;
     if (x < x_min || strain[k] <= threshold) continue;
-    const auto row = static_cast<std::size_t>(nodes.node_index[k][1]);
+    const auto row = static_cast<std::size_t>(view.index[k][1]);
     weight[row] += strain[k] - threshold;
     moment[row] += (strain[k] - threshold) * x;
   }
   std::vector<std::pair<double, double>> centres;
   for (std::size_t row = 0; row < rows; ++row) {
-    const double y = nodes.origin[1] + static_cast<double>(row) * nodes.spacing;
+    const double y = view.origin_y + static_cast<double>(row) * nodes.spacing;
     if (y < y_low - 1e-9 || y > y_high + 1e-9 || weight[row] <= 0.0) continue;
     centres.emplace_back(moment[row] / weight[row], y);
   }

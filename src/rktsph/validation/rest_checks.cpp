@@ -96,19 +96,44 @@ double contact_pressure_oddeven_ratio(const NodeLine& pressure) {
   return oddeven_residual(pressure.value) / std::abs(mean);
 }
 
+LatticeView lattice_view(const NodeSets& nodes) {
+  if (!nodes.on_lattice())
+    throw RunError("this check reads the nodes on a lattice, and the body is meshed otherwise");
+  const PointCloud& points = nodes.sph_nodes;
+  LatticeView view;
+  view.spacing = nodes.spacing;
+  const auto [x_min, x_max] =
+      std::minmax_element(points.position[0].begin(), points.position[0].end());
+  const auto [y_min, y_max] =
+      std::minmax_element(points.position[1].begin(), points.position[1].end());
+  view.origin_x = *x_min;
+  view.origin_y = nodes.dimension >= 2 ? *y_min : 0.0;
+  auto cell = [&](double x, double origin) {
+    return static_cast<int>(std::lround((x - origin) / nodes.spacing));
+  };
+  view.columns = cell(*x_max, view.origin_x) + 1;
+  view.rows = nodes.dimension >= 2 ? cell(*y_max, view.origin_y) + 1 : 1;
+  view.index.resize(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k)
+    view.index[k] = {cell(points.position[0][k], view.origin_x),
+                     nodes.dimension >= 2 ? cell(points.position[1][k], view.origin_y) : 0};
+  return view;
+}
+
 LatticeField lattice_field(const Simulation& simulation,
                            const std::function<double(std::size_t node)>& value) {
   const NodeSets& nodes = simulation.nodes();
+  const LatticeView view = lattice_view(nodes);
   LatticeField field;
-  field.columns = nodes.lattice_size[0];
-  field.rows = nodes.lattice_size[1];
-  field.spacing = nodes.spacing;
-  field.origin_x = nodes.origin[0];
-  field.origin_y = nodes.origin[1];
+  field.columns = view.columns;
+  field.rows = view.rows;
+  field.spacing = view.spacing;
+  field.origin_x = view.origin_x;
+  field.origin_y = view.origin_y;
   field.value.assign(static_cast<std::size_t>(field.columns) * field.rows, std::nan(""));
   for (std::size_t k = 0; k < nodes.sph_nodes.size(); ++k) {
-    const LatticeIndex& index = nodes.node_index[k];
-    field.value[static_cast<std::size_t>(index[1]) * field.columns + index[0]] = value(k);
+    const auto& [i, j] = view.index[k];
+    field.value[static_cast<std::size_t>(j) * field.columns + i] = value(k);
   }
   return field;
 }

@@ -8,6 +8,7 @@
 //   residual_velocity_ratio          largest |v| at the end over its peak (SpeedRecorder)
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <limits>
@@ -94,6 +95,17 @@ struct LatticeField {
   double x(int i) const { return origin_x + i * spacing; }
   double y(int j) const { return origin_y + j * spacing; }
 };
+
+/// Where the SPH nodes of a lattice body sit on their lattice, from their reference positions
+/// (column i = (x - x_min)/dx, row j likewise; the smallest coordinates are the lattice's origin):
+/// the lattice checks of odd-even patterns read this, not the builder's indices. RunError on a
+/// body that is not a lattice (triangles).
+struct LatticeView {
+  std::vector<std::array<int, 2>> index;  ///< (column, row) of each node
+  int columns = 0, rows = 0;
+  double spacing = 0.0, origin_x = 0.0, origin_y = 0.0;
+};
+LatticeView lattice_view(const NodeSets& nodes);
 
 /// value(node) of every SPH node, placed on the lattice.
 LatticeField lattice_field(const Simulation& simulation,
