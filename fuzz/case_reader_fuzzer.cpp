@@ -27,7 +27,8 @@ namespace {
 // Cases far larger than any real run are the reader's to refuse (its node-count limit).
 constexpr double kMaxBuiltLatticePoints = 300.0;
 
-// Points of the lattice that build_node_sets lays over the bounding box of all shapes.
+// Points of the lattice that build_node_sets lays over the bounding box of all shapes (or the
+// nodes of a triangle mesh at that spacing).
 double lattice_points(const rktsph::CaseDescription& description) {
   const rktsph::GeometrySpec& geometry = description.geometry;
   double points = 1.0;
@@ -43,6 +44,9 @@ double lattice_points(const rktsph::CaseDescription& description) {
     if (!(high >= low)) return 0.0;
     points *= (high - low) / geometry.spacing + 1.0;
   }
+  // A triangle mesh holds about 2.5 times the nodes of the lattice at the same spacing
+  // (docs/theory.md §3.6).
+  if (geometry.cells == rktsph::CellLayout::Triangles) points *= 2.5;
   return points;
 }
 
