@@ -7,7 +7,6 @@ namespace rktsph {
 
 namespace {
 constexpr int kMaxStress = CarriedStress::kMax;
-constexpr int kMaxInternal = OverstressIntegrator::kMaxInternal;
 }  // namespace
 
 OverstressIntegrator::OverstressIntegrator(const Material& material, const CarriedStress& carried,
