@@ -41,20 +41,25 @@ inline std::array<double, 2> lattice_origin(const NodeSets& nodes) {
               : 0.0};
 }
 
-/// Column and row of node k of a lattice body, from its position.
-inline std::array<std::int32_t, 2> lattice_index(const NodeSets& nodes, std::size_t k) {
-  const auto origin = lattice_origin(nodes);
+/// Column and row of node k of a lattice body of origin `origin` (lattice_origin), from its
+/// position.
+inline std::array<std::int32_t, 2> lattice_index(const NodeSets& nodes, std::size_t k,
+                                                 const std::array<double, 2>& origin) {
   const PointCloud& points = nodes.sph_nodes;
   return {
       static_cast<std::int32_t>(std::lround((points.position[0][k] - origin[0]) / nodes.spacing)),
       static_cast<std::int32_t>(std::lround((points.position[1][k] - origin[1]) / nodes.spacing))};
 }
+inline std::array<std::int32_t, 2> lattice_index(const NodeSets& nodes, std::size_t k) {
+  return lattice_index(nodes, k, lattice_origin(nodes));
+}
 
 /// Columns and rows of the lattice spanned by the nodes.
 inline std::array<std::int32_t, 2> lattice_extent(const NodeSets& nodes) {
+  const auto origin = lattice_origin(nodes);
   std::array<std::int32_t, 2> extent{0, 0};
   for (std::size_t k = 0; k < nodes.sph_nodes.size(); ++k) {
-    const auto index = lattice_index(nodes, k);
+    const auto index = lattice_index(nodes, k, origin);
     extent = {std::max(extent[0], index[0] + 1), std::max(extent[1], index[1] + 1)};
   }
   return extent;

@@ -21,9 +21,6 @@ const std::vector<std::int32_t>& group_nodes(
                      "a group defined under 'groups' or a built-in group");
   return it->second;
 }
-bool same_normal(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] > 1.0 - 1e-9;
-}
 
 std::vector<Vec3> facet_normals(const SurfaceSet& surface,
                                 const std::vector<std::int32_t>& surface_index, std::int32_t node) {
@@ -44,7 +41,8 @@ std::vector<Vec3> common_normals(const SurfaceSet& surface,
   for (std::int32_t node : members) {
     const std::vector<Vec3> own = facet_normals(surface, surface_index, node);
     std::erase_if(common, [&](const Vec3& c) {
-      return std::none_of(own.begin(), own.end(), [&](const Vec3& o) { return same_normal(o, c); });
+      return std::none_of(own.begin(), own.end(),
+                          [&](const Vec3& o) { return same_direction(o, c); });
     });
   }
   return common;
@@ -59,7 +57,7 @@ double loaded_share(const SurfaceSet& surface, const std::vector<std::int32_t>& 
   if (k < 0) return 0.0;
   for (std::int32_t f = surface.facets_begin(static_cast<std::size_t>(k));
        f < surface.facets_end(static_cast<std::size_t>(k)); ++f) {
-    if (!same_normal(surface.facet_normal(f), normal)) continue;
+    if (!same_direction(surface.facet_normal(f), normal)) continue;
     double loaded = 0.0, total = 0.0;
     for (const std::int32_t piece : surface.pieces(f)) {
       const auto facet = static_cast<std::size_t>(piece);
@@ -234,7 +232,7 @@ BoundaryConditions::BoundaryConditions(
   pore_pressure_field_ = model.pore_pressure_field();
   biot_coefficient_ = model.biot_coefficient();
 
-  // Mirror planes first: they decide which lattice faces are real faces.
+  // Mirror planes first: they decide which faces of the outline are real faces.
   std::vector<std::pair<int, std::int32_t>> rollers;  // (axis, node)
   for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
     if (condition.kind != BoundaryConditionSpec::Kind::Roller) continue;
@@ -425,7 +423,7 @@ BoundaryConditions::BoundaryConditions(
 bool BoundaryConditions::driven(std::int32_t node, const Vec3& normal) const {
   const auto& faces = driven_normals_[static_cast<std::size_t>(node)];
   return std::any_of(faces.begin(), faces.end(),
-                     [&](const Vec3& f) { return same_normal(f, normal); });
+                     [&](const Vec3& f) { return same_direction(f, normal); });
 }
 
 void BoundaryConditions::classify(SurfaceSet& surface) const {
@@ -448,7 +446,7 @@ void BoundaryConditions::classify(SurfaceSet& surface) const {
 }
 
 void BoundaryConditions::follow_configuration(const PointCloud& nodes) {
-  // Built on the first call, while surface_ still holds the lattice facets and their normals.
+  // Built on the first call, while surface_ still holds the reference facets and their normals.
   if (!perimeter_) perimeter_.emplace(nodes_.outline, nodes_.sph_nodes, surface_);
   perimeter_->update(nodes, surface_);
   update_contacts(nodes);

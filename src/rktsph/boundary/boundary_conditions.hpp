@@ -25,12 +25,12 @@ namespace rktsph {
 
 /// The boundary conditions of a case, compiled once from its `boundary_conditions` (docs/theory.md
 /// §5.1): imposed velocities, fixed nodes, rollers and their mirror planes, drained pore pressure
-/// and imposed tractions as functions of time. They act on a surface set (surface()): the lattice
-/// faces, built here once; V2 will replace it every step with its free-surface detection
-/// (replace_surface).
+/// and imposed tractions as functions of time. They act on a surface set (surface()): the faces of
+/// the outline of the body's cells (docs/theory.md §3.5), built here once and turned with a moving
+/// body (follow_configuration).
 class BoundaryConditions {
  public:
-  /// Validates the case's conditions against the groups and the lattice (InputError at the
+  /// Validates the case's conditions against the groups and the cells (InputError at the
   /// condition's line on any inconsistency) and compiles them into per-node constraints.
   BoundaryConditions(const CaseDescription& description, const NodeSets& nodes,
                      const std::map<std::string, std::vector<std::int32_t>>& groups,
@@ -47,9 +47,9 @@ class BoundaryConditions {
   /// Takes `surface` (normals only; its flags are recomputed) as the surface the conditions act on
   /// from now on. Reuses the buffers: no allocation when the size does not grow.
   void replace_surface(const SurfaceSet& surface);
-  /// Turns every facet of the lattice surface to the outward normal of the body's perimeter on the
-  /// moving configuration `nodes` (docs/theory.md §9.7); the facets, and which of them velocity
-  /// conditions act on, stay those of the lattice.
+  /// Turns every facet of the surface to the outward normal of the body's perimeter on the moving
+  /// configuration `nodes` (docs/theory.md §9.7); the facets, and which of them velocity
+  /// conditions act on, stay those of the reference configuration.
   void follow_configuration(const PointCloud& nodes);
 
   /// Imposes every constraint at time t on `values`. Row of node n is n, or node_to_row[n] when
@@ -119,7 +119,7 @@ class BoundaryConditions {
   std::vector<std::uint8_t> velocity_axes_;
   std::vector<std::vector<Vec3>> driven_normals_;  // per node: faces of its velocity conditions
   SurfaceSet surface_;
-  std::optional<PerimeterNormals> perimeter_;  // of the lattice surface, built on first use
+  std::optional<PerimeterNormals> perimeter_;  // of the reference surface, built on first use
   const NodeSets& nodes_;
   std::vector<TimeFunction> functions_;
   std::vector<Constraint> pressure_constraints_;  // drained nodes, applied first

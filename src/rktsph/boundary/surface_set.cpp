@@ -1,7 +1,6 @@
 #include "rktsph/boundary/surface_set.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 
 #include "rktsph/mesh/node_classification.hpp"
@@ -66,7 +65,6 @@ SurfaceNormals SurfaceSet::projected_normals(std::size_t k) const {
 void outline_surface(const CellComplex& cells, const Outline& outline, const PointCloud& nodes,
                      std::span<const std::uint8_t> mirror_axes, SurfaceSet& surface) {
   surface.clear();
-  const int d = cells.dimension();
   struct Face {
     Vec3 normal;
     int order;  // 2 a + (n_a > 0) for the dominant axis a: -x, +x, -y, +y
@@ -76,18 +74,15 @@ void outline_surface(const CellComplex& cells, const Outline& outline, const Poi
   std::vector<Face> faces;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const unsigned mirrors = mirror_axes.empty() ? 0u : unsigned{mirror_axes[i]};
-    const double fraction =
-        filled_fraction(cells, nodes, i) * static_cast<double>(1u << std::popcount(mirrors));
-    if (node_place(fraction, d) != NodePlace::Boundary) continue;
+    if (place_of_node(cells, nodes, i, mirrors) != NodePlace::Boundary) continue;
     faces.clear();
     for (const std::int32_t f : outline.facets_at(i)) {
       const Vec3 n = outline.normal(static_cast<std::size_t>(f));
       const int axis = std::abs(n[1]) > std::abs(n[0]) ? 1 : 0;
       if (((mirrors >> axis) & 1u) && std::abs(n[static_cast<std::size_t>(axis)]) > 1.0 - 1e-9)
         continue;  // a mirror plane closes this side
-      auto same = std::find_if(faces.begin(), faces.end(), [&](const Face& face) {
-        return face.normal[0] * n[0] + face.normal[1] * n[1] > 1.0 - 1e-9;
-      });
+      auto same = std::find_if(faces.begin(), faces.end(),
+                               [&](const Face& face) { return same_direction(face.normal, n); });
       if (same == faces.end()) {
         faces.push_back({n,
                          2 * axis + (n[static_cast<std::size_t>(axis)] > 0.0 ? 1 : 0),

@@ -13,4 +13,9 @@ using Vec3 = std::array<double, 3>;
 /// xx, yy, zz, xy, yz, zx, with tensor (not engineering) shear components.
 using SymmetricTensor = std::array<double, 6>;
 
+/// True if unit vectors a and b point the same way (to within rounding).
+inline bool same_direction(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] > 1.0 - 1e-9;
+}
+
 }  // namespace rktsph

@@ -1,5 +1,6 @@
 #include "rktsph/mesh/node_classification.hpp"
 
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -37,6 +38,12 @@ double filled_fraction(const CellComplex& cells, const PointCloud& nodes, std::s
     fraction += std::atan2(ax * by - ay * bx, ax * bx + ay * by) / (2.0 * std::numbers::pi);
   }
   return fraction;
+}
+
+NodePlace place_of_node(const CellComplex& cells, const PointCloud& nodes, std::size_t node,
+                        unsigned mirror_axes) {
+  const double images = static_cast<double>(1u << std::popcount(mirror_axes));
+  return node_place(filled_fraction(cells, nodes, node) * images, cells.dimension());
 }
 
 NodePlace node_place(double fraction, int dimension) {

@@ -25,4 +25,9 @@ double filled_fraction(const CellComplex& cells, const PointCloud& nodes, std::s
 /// The place of a node whose cells (with their mirror images) fill `fraction` of its angle.
 NodePlace node_place(double fraction, int dimension);
 
+/// The place of `node` on the configuration `nodes`, with a mirror plane through it for every bit
+/// of `mirror_axes` (the images of its cells double its fraction once per plane).
+NodePlace place_of_node(const CellComplex& cells, const PointCloud& nodes, std::size_t node,
+                        unsigned mirror_axes);
+
 }  // namespace rktsph

@@ -1,6 +1,6 @@
 // The free surface that the detector of docs/theory.md §9.4 finds on a run's current
-// configuration, for the field output and the checks: the conditions of a moving body act on its
-// lattice perimeter (§9.7), and this says how well the detector agrees with it.
+// configuration, for the field output and the checks: the conditions of a moving body act on the
+// perimeter of its cells (§9.7), and this says how well the detector agrees with it.
 #pragma once
 
 #include <cstddef>

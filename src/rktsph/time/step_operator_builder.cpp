@@ -1,7 +1,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <bit>
 #include <chrono>
 
 #include "rktsph/core/error.hpp"
@@ -67,15 +66,13 @@ void StepOperatorBuilder::classify(const Configuration& configuration, StepOpera
   // half-plane, so the cross-set gradient is already linear-exact, while the self-including
   // boundary closure is unstable (spectral radius 1.2-1.45 per step on an L-shaped lattice at
   // C = 0.3-0.9; the corner lies on no face, so nothing constrains its half-step).
-  const int d = reference_.dimension;
   const std::size_t n = configuration.sph_nodes.size();
   operators.node_to_boundary_row.assign(n, -1);
   operators.boundary_nodes.clear();
   operators.incomplete_nodes.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    const double fraction = filled_fraction(reference_.cells, reference_.sph_nodes, i) *
-                            static_cast<double>(1u << std::popcount(unsigned{mirror_axes_[i]}));
-    const NodePlace place = node_place(fraction, d);
+    const NodePlace place =
+        place_of_node(reference_.cells, reference_.sph_nodes, i, unsigned{mirror_axes_[i]});
     if (place == NodePlace::Isolated)
       throw RunError(fmt::format(
           "the SPH node at {} belongs to no cell (a shape vertex or a one-node-wide strip "
