@@ -1,5 +1,8 @@
 #include "rktsph/mesh/cell_geometry.hpp"
 
+#include <algorithm>
+#include <limits>
+
 #include "rktsph/mesh/cell_kinds/quadrilateral.hpp"
 #include "rktsph/mesh/cell_kinds/segment.hpp"
 #include "rktsph/mesh/cell_kinds/triangle.hpp"
@@ -50,6 +53,19 @@ std::span<const CellFace> cell_faces(CellKind kind) {
       kind, [] { return std::span<const CellFace>(segment::kFaces); },
       [] { return std::span<const CellFace>(triangle::kFaces); },
       [] { return std::span<const CellFace>(quadrilateral::kFaces); });
+}
+
+double cell_width(CellKind kind, const CellCorners& c) {
+  return dispatch(
+      kind, [&] { return segment::width(c); }, [&] { return triangle::width(c); },
+      [&] { return quadrilateral::width(c); });
+}
+
+double smallest_cell_width(const CellComplex& cells, const PointCloud& nodes) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < cells.cell_count(); ++p)
+    smallest = std::min(smallest, cell_width(cells.kind(p), cells.corner_positions(nodes, p)));
+  return smallest;
 }
 
 double cell_quality(CellKind kind, const CellCorners& c) {

@@ -9,6 +9,8 @@
 #include "rktsph/case/computed_defaults.hpp"
 #include "rktsph/geometry/triangle_mesher.hpp"
 #include "rktsph/materials/material_factory.hpp"
+#include "rktsph/mesh/cell_geometry.hpp"
+#include "rktsph/sph/cell_stencils.hpp"
 
 namespace rktsph {
 
@@ -238,9 +240,10 @@ std::string Assembly::time_step_origin(const std::vector<std::string>& material_
       stiffest = k;
   const Material& material = model_->material(static_cast<std::int32_t>(stiffest));
   return fmt::format(
-      "dt = numerics.courant {} x geometry.spacing {} m / c_p {:.4g} m/s of material '{}' "
+      "dt = numerics.courant {} x {} {} m / c_p {:.4g} m/s of material '{}' "
       "(young_modulus {}, density {})",
-      numerics.courant, nodes_.spacing, model_->max_wave_speed(), material_names[stiffest],
+      numerics.courant, nodes_.on_lattice() ? "geometry.spacing" : "the smallest cell's width",
+      courant_length_, model_->max_wave_speed(), material_names[stiffest],
       material.elastic().young_modulus, material.density());
 }
 
@@ -284,10 +287,13 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
   model_ = registered_->create(description_, std::move(materials));
   check_wave_speeds(description_, *model_, material_names);
   conditions_ = std::make_unique<BoundaryConditions>(description_, nodes_, groups_, *model_);
+  // On a lattice the cells' width is dx; elsewhere the smallest cell sets the step (§2.5).
+  courant_length_ =
+      nodes_.on_lattice() ? nodes_.spacing : smallest_cell_width(nodes_.cells, nodes_.sph_nodes);
   // dt = C dx / c_p (docs/theory.md §2.5), constant but for a shorter last step: the operators
   // are fixed. Both checked before the operators are built.
   time_step_ = numerics.time_step ? *numerics.time_step
-                                  : numerics.courant * nodes_.spacing / model_->max_wave_speed();
+                                  : numerics.courant * courant_length_ / model_->max_wave_speed();
   total_steps_ = checked_step_count(description_, time_step_, time_step_origin(material_names));
 
   StepOptions options;
@@ -302,20 +308,27 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
   options.stress_update = numerics.stress_update.value_or(default_stress_update(nodes_.dimension));
   options.hourglass_stiffness =
       hourglass_stiffness(numerics, options.stress_update, nodes_.dimension);
-  if (options.hourglass_stiffness.active() && description_.geometry.cells == CellLayout::Triangles)
-    throw InputError(
-        description_.geometry.where, "geometry.cells", "triangles",
-        "the default zero-energy control of 2D runs, the cells' Flanagan-Belytschko hourglass "
-        "stiffness, exists for quadrilaterals only, and no control for triangles is built yet; "
-        "setting numerics.hourglass.stiffness: 0 runs without one, but measured on the "
-        "slope-elastic case the toe and the crest then keep moving (0.03-0.07 m/s under damping "
-        "that stops the lattice's), so its results are not yet to be trusted (docs/theory.md §3.6)",
-        "cells: lattice, or triangles with numerics.hourglass.stiffness: 0 for a trial run");
+  if (description_.geometry.cells == CellLayout::Triangles) {
+    // The Flanagan-Belytschko stiffness acts on the quadrilaterals' hourglass modes, which
+    // triangles do not have (docs/theory.md §3.4).
+    if (numerics.hourglass_stiffness && *numerics.hourglass_stiffness > 0.0)
+      throw InputError(numerics.where, "numerics.hourglass.stiffness",
+                       fmt::format("{}", *numerics.hourglass_stiffness),
+                       "the cells' hourglass stiffness acts on the hourglass modes of "
+                       "quadrilaterals; triangles have none (docs/theory.md §3.4)",
+                       "0 or no key with geometry.cells: triangles");
+    options.hourglass_stiffness = {};
+  }
   options.hourglass_plastic_fraction = numerics.hourglass_plastic_fraction;
   options.strain_hourglass_stiffness =
-      strain_hourglass_stiffness(numerics, time_step_ * model_->max_wave_speed() / nodes_.spacing);
+      strain_hourglass_stiffness(numerics, time_step_ * model_->max_wave_speed() / courant_length_);
   options.artificial_viscosity = numerics.artificial_viscosity;
   state_.configuration = reference_configuration(nodes_, options.h_over_dx * nodes_.spacing);
+  if (!nodes_.on_lattice())  // each point's h from its cells (docs/theory.md §4.8)
+    cell_smoothing_lengths(nodes_.cells, state_.configuration.sph_nodes,
+                           state_.configuration.stress_points, options.h_over_dx,
+                           state_.configuration.node_smoothing_length,
+                           state_.configuration.point_smoothing_length);
   StepOperatorBuilder builder(nodes_, options, conditions_->mirror_planes(),
                               conditions_->mirror_axes());
   step_ = std::make_unique<RkTaylorStep>(*model_, nodes_, options, std::move(builder),
@@ -333,8 +346,8 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
                                  numerics.h_over_dx),
                      "all, or h_over_dx below 0.79 (cubic spline; 0.52 for the quintic spline "
                      "and the Gaussian)");
-  check_courant(description_, time_step_ * model_->max_wave_speed() / nodes_.spacing,
-                model_->max_wave_speed(), nodes_.spacing,
+  check_courant(description_, time_step_ * model_->max_wave_speed() / courant_length_,
+                model_->max_wave_speed(), courant_length_,
                 // Measured in 2D; a 1D bar is exact at C = 1 whatever its stencils.
                 compact_stencils || nodes_.dimension < 2);
   if (registered_->create_projection) {

@@ -97,6 +97,7 @@ class Assembly {
   State state_;
   NodeEstimate node_estimate_;
   double time_step_ = 0.0;
+  double courant_length_ = 0.0;  ///< [m] dx on a lattice, else the smallest cell width (§2.5)
   long total_steps_ = 0;
 };
 

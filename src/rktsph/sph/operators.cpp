@@ -205,9 +205,9 @@ namespace {
 template <int D>
 bool compute_row_in(const Vec3& target, std::span<const StencilSource> stencil,
                     const OperatorOptions& options, GradientReference reference,
-                    std::int32_t self_column, const RowSlots& slots) {
+                    std::int32_t self_column, const RowSlots& slots, double smoothing_length) {
   const Kernel& kernel = options.kernel;
-  const Kernel::Scales scales = kernel.scales(options.smoothing_length);
+  const Kernel::Scales scales = kernel.scales(smoothing_length);
   const std::size_t n = stencil.size();
   double* interpolation = slots.interpolation;
   const std::array<double*, 3>& gradient = slots.gradient;
@@ -319,14 +319,15 @@ bool compute_row_in(const Vec3& target, std::span<const StencilSource> stencil,
 
 bool compute_row(int dimension, const Vec3& target, std::span<const StencilSource> stencil,
                  const OperatorOptions& options, GradientReference reference,
-                 std::int32_t self_column, const RowSlots& slots) {
+                 std::int32_t self_column, const RowSlots& slots, double smoothing_length) {
+  const double h = smoothing_length > 0.0 ? smoothing_length : options.smoothing_length;
   switch (dimension) {
     case 1:
-      return compute_row_in<1>(target, stencil, options, reference, self_column, slots);
+      return compute_row_in<1>(target, stencil, options, reference, self_column, slots, h);
     case 2:
-      return compute_row_in<2>(target, stencil, options, reference, self_column, slots);
+      return compute_row_in<2>(target, stencil, options, reference, self_column, slots, h);
     default:
-      return compute_row_in<3>(target, stencil, options, reference, self_column, slots);
+      return compute_row_in<3>(target, stencil, options, reference, self_column, slots, h);
   }
 }
 
@@ -368,9 +369,10 @@ class RowScratch {
 
 bool row_is_regular(int dimension, const Vec3& target, std::span<const StencilSource> stencil,
                     const OperatorOptions& options, GradientReference reference,
-                    std::int32_t self_column) {
+                    std::int32_t self_column, double smoothing_length) {
   const RowScratch scratch(row_size(stencil.size(), reference));
-  return compute_row(dimension, target, stencil, options, reference, self_column, scratch.slots());
+  return compute_row(dimension, target, stencil, options, reference, self_column, scratch.slots(),
+                     smoothing_length);
 }
 
 bool append_row(WeightTable& table, const Vec3& target, std::span<const StencilSource> stencil,
@@ -463,10 +465,11 @@ void compute(int dimension, const OperatorOptions& options, const RowTarget& tar
                  {}};
   for (std::size_t a = 0; a < axes; ++a)
     slots.gradient[a] = block.gradient[a].data() + first;
-  workspace.regular[row] = compute_row(dimension, target.position, block.stencil, options,
-                                       target.reference, target.self_column, slots)
-                               ? 1
-                               : 0;
+  workspace.regular[row] =
+      compute_row(dimension, target.position, block.stencil, options, target.reference,
+                  target.self_column, slots, target.smoothing_length)
+          ? 1
+          : 0;
   for (const StencilSource& s : block.stencil)
     block.reflections = block.reflections || s.reflection != 0;
   block.entries = end;

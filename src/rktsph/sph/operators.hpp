@@ -177,14 +177,17 @@ inline std::size_t row_size(std::size_t stencil_size, GradientReference referenc
 
 /// The weights of append_row, written into `slots` instead of appended: the same arithmetic in
 /// the same order, so a table computed row by row in any order is the table append_row makes.
+/// `smoothing_length` > 0 is the row's own h (docs/theory.md §4.8); 0 takes the options'.
 bool compute_row(int dimension, const std::array<double, 3>& target,
                  std::span<const StencilSource> stencil, const OperatorOptions& options,
-                 GradientReference reference, std::int32_t self_column, const RowSlots& slots);
+                 GradientReference reference, std::int32_t self_column, const RowSlots& slots,
+                 double smoothing_length = 0.0);
 
 /// Whether append_row would call the row regular, without keeping its weights (thread-safe).
 bool row_is_regular(int dimension, const std::array<double, 3>& target,
                     std::span<const StencilSource> stencil, const OperatorOptions& options,
-                    GradientReference reference, std::int32_t self_column);
+                    GradientReference reference, std::int32_t self_column,
+                    double smoothing_length = 0.0);
 
 /// Where a row is taken and how its gradient is referenced (the arguments of append_row besides
 /// its stencil).
@@ -192,6 +195,9 @@ struct RowTarget {
   std::array<double, 3> position{};
   GradientReference reference = GradientReference::ShepardCentroid;
   std::int32_t self_column = -1;
+  /// The row's own smoothing length [m] (stencils from the cells, docs/theory.md §4.8); 0: the
+  /// options' one.
+  double smoothing_length = 0.0;
 };
 
 /// Rows the builder found degenerate (target indices).

@@ -7,6 +7,7 @@
 #include "rktsph/core/parallel.hpp"
 #include "rktsph/core/step_time_split.hpp"
 #include "rktsph/mesh/node_classification.hpp"
+#include "rktsph/sph/cell_stencils.hpp"
 #include "rktsph/time/step_operators.hpp"
 
 namespace rktsph {
@@ -39,10 +40,24 @@ StepOperatorBuilder::StepOperatorBuilder(const NodeSets& reference, const StepOp
   filter_options_.smoothing_length = options.hourglass_h_over_dx * reference.spacing;
   filter_options_.interpolation_order = 1;
   mirror_axes_.resize(reference.sph_nodes.size(), 0);
+  // A lattice's radius search picks each cell's corners at h = 0.75 dx; other cells take their
+  // stencils from the complex (docs/theory.md §4.8).
+  cell_stencils_ = !reference.on_lattice();
+  // A stress point's value is its cell's linear interpolant there (the corners' mean on a
+  // simplex), not a kernel-weighted mean of corners at unequal distances.
+  cell_corner_options_ = operator_options_;
+  cell_corner_options_.interpolation_order = 1;
+  simplices_ = true;
+  for (std::size_t p = 0; p < reference.cells.cell_count(); ++p)
+    simplices_ = simplices_ && reference.cells.corners(p).size() ==
+                                   static_cast<std::size_t>(reference.dimension + 1);
 }
 
 bool StepOperatorBuilder::filter_active() const {
-  return options_.hourglass_filter && reference_.dimension >= 2 && options_.hourglass_kappa > 0.0;
+  // Only cells with more corners than a simplex have motions their centroid's gradient does not
+  // see (the quadrilaterals' checkerboard, §3.3); a mesh of simplices has none to filter.
+  return options_.hourglass_filter && reference_.dimension >= 2 && options_.hourglass_kappa > 0.0 &&
+         !simplices_;
 }
 
 void StepOperatorBuilder::build(const Configuration& configuration, StepOperators& operators) {
@@ -139,7 +154,7 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration, 
   // With a skin the stencils come from the candidates, searched again only when asked; without,
   // from the cell lists every build.
   const bool from_candidates = candidate_skin_ > 0.0;
-  if (search || !from_candidates) {
+  if (!cell_stencils_ && (search || !from_candidates)) {
     auto clock = std::chrono::steady_clock::now();
     const double radius = from_candidates ? support + candidate_skin_ : support;
     node_cells_.rebuild(nodes, radius);
@@ -163,9 +178,15 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration, 
   };
 
   StencilReport report;
-  build_rows(points.size(), d, options, TableWeights::InterpolationAndGradient, ops.nodes_to_points,
-             workspace_, [&](std::size_t p, std::vector<StencilSource>& stencil) {
+  build_rows(points.size(), d, cell_stencils_ ? cell_corner_options_ : options,
+             TableWeights::InterpolationAndGradient, ops.nodes_to_points, workspace_,
+             [&](std::size_t p, std::vector<StencilSource>& stencil) {
                const auto x = points.point(p);
+               if (cell_stencils_) {
+                 gather_cell_corners(reference_.cells, nodes, p, stencil);
+                 return RowTarget{x, GradientReference::ShepardCentroid, -1,
+                                  configuration.point_smoothing_length[p]};
+               }
                gather(point_row_candidates_, p, node_cells, nodes, -1, x, stencil);
                return RowTarget{x, GradientReference::ShepardCentroid, -1};
              });
@@ -207,6 +228,8 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration, 
              [&](std::size_t i, std::vector<StencilSource>& stencil) {
                const auto x = nodes.point(i);
                const auto self = static_cast<std::int32_t>(i);
+               if (cell_stencils_)
+                 return cell_node_row(configuration, i, n_points, boundary_row, stencil);
                gather(node_row_candidates_, i, point_cells, points, -1, x, stencil);
                if (boundary_row[i] < 0) return RowTarget{x, GradientReference::ShepardCentroid, -1};
                const RowTarget row{x, GradientReference::Self, n_points + self};
@@ -239,6 +262,13 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration, 
                [&](std::size_t r, std::vector<StencilSource>& stencil) {
                  const std::int32_t self = rows[r];
                  const auto x = nodes.point(static_cast<std::size_t>(self));
+                 if (cell_stencils_) {
+                   gather_cell_neighbours(reference_.cells, nodes, static_cast<std::size_t>(self),
+                                          options.mirrors, plane_tolerance(), stencil);
+                   return RowTarget{x, GradientReference::Self, self,
+                                    cell_stencil_smoothing_length(x, stencil, d, options_.h_over_dx,
+                                                                  CellStencilKind::CellNeighbours)};
+                 }
                  gather(boundary_row_candidates_, r, node_cells, nodes, self, x, stencil);
                  return RowTarget{x, GradientReference::Self, self};
                });
@@ -260,6 +290,36 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration, 
     workspace_ = OperatorWorkspace{};
     share_workspace_ = ShareWorkspace{};
   }
+}
+
+RowTarget StepOperatorBuilder::cell_node_row(const Configuration& configuration, std::size_t node,
+                                             std::int32_t n_points,
+                                             std::span<const std::int32_t> boundary_row,
+                                             std::vector<StencilSource>& stencil) {
+  // docs/theory.md §4.8: the node's cells' centroids, images included; a boundary node's own
+  // half-step value is its reference, and where that leaves the row rank-deficient the half-step
+  // values of its boundary neighbours complete it, as in the radius search's retry.
+  const PointCloud& nodes = configuration.sph_nodes;
+  const int d = reference_.dimension;
+  const auto x = nodes.point(node);
+  gather_cell_centroids(reference_.cells, nodes, configuration.stress_points, node,
+                        operator_options_.mirrors, plane_tolerance(), stencil);
+  double h = configuration.node_smoothing_length[node];
+  if (boundary_row[node] < 0) return RowTarget{x, GradientReference::ShepardCentroid, -1, h};
+  const auto self_column = n_points + static_cast<std::int32_t>(node);
+  if (row_is_regular(d, x, stencil, operator_options_, GradientReference::Self, self_column, h))
+    return RowTarget{x, GradientReference::Self, self_column, h};
+  std::vector<StencilSource>& neighbours = retry_stencils_[node];
+  gather_cell_neighbours(reference_.cells, nodes, node, operator_options_.mirrors,
+                         plane_tolerance(), neighbours);
+  h = std::max(h, cell_stencil_smoothing_length(x, neighbours, d, options_.h_over_dx,
+                                                CellStencilKind::CellNeighbours));
+  for (StencilSource s : neighbours)
+    if (boundary_row[static_cast<std::size_t>(s.column)] >= 0) {
+      s.column += n_points;
+      stencil.push_back(s);
+    }
+  return RowTarget{x, GradientReference::Self, self_column, h};
 }
 
 void StepOperatorBuilder::degenerate(std::size_t rows, StepOperators& operators,

@@ -118,12 +118,15 @@ class StepOperatorBuilder {
   const NodeSets& reference_;
   StepOptions options_;
   OperatorOptions operator_options_;
-  OperatorOptions filter_options_;  // the hourglass filter's round trip
+  OperatorOptions filter_options_;       // the hourglass filter's round trip
+  OperatorOptions cell_corner_options_;  // stress points on cell stencils: first order (§4.8)
   std::vector<std::uint8_t> mirror_axes_;
   // The classification depends only on the lattice topology and the mirror axes: made once and
   // copied into later builds' operators (a moving configuration keeps its topology, §9.1).
   bool classified_ = false;
   bool fall_back_ = false;
+  bool cell_stencils_ = false;  // stencils from the complex, not a radius (§4.8)
+  bool simplices_ = false;      // every cell a simplex: no hourglass mode to filter (§3.3)
   bool share_weights_ = true;
   double candidate_skin_ = 0.0;  // [m]; 0: every build searches the cell lists at the support
   struct CandidateTable {
@@ -138,6 +141,12 @@ class StepOperatorBuilder {
   /// sources, the node itself left out; also the boundary neighbours of a corner's retry).
   void search_candidates(const PointCloud& nodes, const PointCloud& points,
                          const std::vector<std::int32_t>& boundary_nodes, double radius);
+  /// A node's row of points_to_nodes from the cells (docs/theory.md §4.8).
+  RowTarget cell_node_row(const Configuration& configuration, std::size_t node,
+                          std::int32_t n_points, std::span<const std::int32_t> boundary_row,
+                          std::vector<StencilSource>& stencil);
+  /// How near a mirror plane a node lies on it, as the radius search tests it [m].
+  double plane_tolerance() const { return 1e-8 * operator_options_.smoothing_length; }
   /// Counts `rows` degenerate rows, or throws `message` for the first when not falling back.
   void degenerate(std::size_t rows, StepOperators& operators, const std::string& message) const;
   std::vector<std::int32_t> boundary_nodes_, node_to_boundary_row_, incomplete_nodes_;

@@ -72,4 +72,15 @@ inline double polygon_smallest_corner_sine(const CellCorners& c) {
   return smallest;
 }
 
+/// The longest edge of a polygon [m].
+inline double polygon_longest_edge(const CellCorners& c) {
+  double longest = 0.0;
+  for (int k = 0; k < c.count; ++k) {
+    const auto at = static_cast<std::size_t>(k);
+    const auto next = static_cast<std::size_t>((k + 1) % c.count);
+    longest = std::max(longest, std::hypot(c.x[next] - c.x[at], c.y[next] - c.y[at]));
+  }
+  return longest;
+}
+
 }  // namespace rktsph

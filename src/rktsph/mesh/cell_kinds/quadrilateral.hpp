@@ -32,6 +32,12 @@ inline void corner_jacobians(const CellCorners& c, std::array<double, kMaxCellCo
   polygon_corner_jacobians(c, jacobian);
 }
 
+/// A / (longest edge) [m]: the smallest altitude of a parallelogram (dx on a lattice).
+inline double width(const CellCorners& c) {
+  const double longest = polygon_longest_edge(c);
+  return longest > 0.0 ? std::abs(measure(c)) / longest : 0.0;
+}
+
 /// The smallest corner's sine, J_k / (|e_next| |e_prev|): 1 for a rectangle, 0 at a straight
 /// corner, negative at a re-entrant (arrowhead) or inverted one.
 inline double quality(const CellCorners& c) {

@@ -23,6 +23,11 @@ inline void corner_jacobians(const CellCorners& c, std::array<double, kMaxCellCo
   jacobian[0] = jacobian[1] = measure(c);
 }
 
+/// Its length [m].
+inline double width(const CellCorners& c) {
+  return std::abs(measure(c));
+}
+
 /// 1 for a segment of positive length, -1 for a crossed one.
 inline double quality(const CellCorners& c) {
   return measure(c) > 0.0 ? 1.0 : -1.0;

@@ -23,6 +23,12 @@ inline void corner_jacobians(const CellCorners& c, std::array<double, kMaxCellCo
   polygon_corner_jacobians(c, jacobian);
 }
 
+/// The smallest altitude, 2 A / (longest edge) [m]: the distance a wave crosses the cell in.
+inline double width(const CellCorners& c) {
+  const double longest = polygon_longest_edge(c);
+  return longest > 0.0 ? 2.0 * std::abs(measure(c)) / longest : 0.0;
+}
+
 /// The smallest corner's sine, J_k / (|e_next| |e_prev|): sqrt(3)/2 for an equilateral triangle,
 /// towards 0 as a corner closes or opens flat, negative once inverted.
 inline double quality(const CellCorners& c) {
