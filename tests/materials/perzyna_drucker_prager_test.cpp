@@ -301,6 +301,45 @@ TEST(PerzynaDruckerPrager, SofteningOfCohesionAndFrictionFollowsTheStrengthAtSlo
   EXPECT_NEAR(history.back().internal[FrictionalInternal::kFrictionAngle], 26.0, 1e-3);
 }
 
+TEST(PerzynaDruckerPrager, SubStepStiffnessBoundsTheRelaxationRate) {
+  // Beyond the apex the cone and the cut-off flow together; the sum of their rates (eq. 1.15)
+  // must bound the largest eigenvalue of the source's Jacobian (central differences, D built
+  // here), and not by much more than the cut-off's share K gamma/F0 on top of the cone's.
+  const auto material = make_material(ConeMatching::Compression, 2.0);
+  std::vector<double> internal(3);
+  material.initial_internal(internal);
+  const ElasticConstants elastic = material.elastic();
+  const double apex = kCohesion / std::tan(to_radians(kFrictionAngle));
+  const auto source = [&](const SymmetricTensor& at) {
+    SymmetricTensor rate;
+    std::vector<double> internal_rate(3);
+    material.viscoplastic_rate(at, internal, rate, internal_rate);
+    const double volumetric = elastic.lame_lambda() * (rate[0] + rate[1] + rate[2]);
+    SymmetricTensor result;
+    for (int i = 0; i < 6; ++i)
+      result[i] = -2.0 * elastic.shear_modulus() * rate[i] - (i < 3 ? volumetric : 0.0);
+    return result;
+  };
+  for (const SymmetricTensor& stress :
+       {SymmetricTensor{-100e3, -150e3, -500e3, 20e3, 0.0, 10e3},
+        SymmetricTensor{apex + 3e3, apex + 1e3, apex + 2e3, 500.0, 0.0, 0.0}}) {
+    Eigen::Matrix<double, 6, 6> jacobian;
+    const double step = 1.0;  // [Pa]: truncation of a smooth source ~1e-10 relative
+    for (int column = 0; column < 6; ++column) {
+      SymmetricTensor plus = stress, minus = stress;
+      plus[column] += step;
+      minus[column] -= step;
+      const SymmetricTensor up = source(plus), down = source(minus);
+      for (int row = 0; row < 6; ++row)
+        jacobian(row, column) = (up[row] - down[row]) / (2.0 * step);
+    }
+    const double measured = jacobian.eigenvalues().cwiseAbs().maxCoeff();
+    const double bound = material.source_stiffness(stress, internal);
+    EXPECT_GE(bound, measured * (1.0 - 1e-6)) << stress[0];
+    EXPECT_LE(bound, 3.0 * measured) << stress[0];
+  }
+}
+
 TEST(PerzynaDruckerPrager, NoFlowInsideTheConeAndBelowTheCutOff) {
   const auto material = make_material(ConeMatching::PlaneStrain, 5.0);
   std::vector<double> internal(3);

@@ -256,6 +256,55 @@ TEST(PerzynaMohrCoulomb, PathThroughTheApexSettlesAtTheApex) {
     EXPECT_NEAR(last.stress[i], 0.0, 1e-6 * kReference) << "component " << i;
 }
 
+/// Largest |eigenvalue| of the Jacobian of the stress source S(sigma) = -D : eps_vp_rate(sigma),
+/// by central differences (D built here: lambda tr(e) I + 2G e).
+double measured_relaxation_rate(const Material& material, const SymmetricTensor& stress,
+                                const std::vector<double>& internal) {
+  const ElasticConstants elastic = material.elastic();
+  const auto source = [&](const SymmetricTensor& at) {
+    SymmetricTensor rate;
+    std::vector<double> internal_rate(internal.size());
+    material.viscoplastic_rate(at, internal, rate, internal_rate);
+    const double volumetric = elastic.lame_lambda() * (rate[0] + rate[1] + rate[2]);
+    SymmetricTensor result;
+    for (int i = 0; i < 6; ++i)
+      result[i] = -2.0 * elastic.shear_modulus() * rate[i] - (i < 3 ? volumetric : 0.0);
+    return result;
+  };
+  Eigen::Matrix<double, 6, 6> jacobian;
+  const double step = 1.0;  // [Pa] on stresses of 1e5: truncation ~1e-10 of a smooth source
+  for (int column = 0; column < 6; ++column) {
+    SymmetricTensor plus = stress, minus = stress;
+    plus[column] += step;
+    minus[column] -= step;
+    const SymmetricTensor up = source(plus), down = source(minus);
+    for (int row = 0; row < 6; ++row)
+      jacobian(row, column) = (up[row] - down[row]) / (2.0 * step);
+  }
+  return jacobian.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+TEST(PerzynaMohrCoulomb, SubStepStiffnessBoundsTheRelaxationRate) {
+  // The sub-step rule (docs/theory.md eq. 2.7) needs the source's fastest rate. Near a corner two
+  // planes flow, and beyond the apex all nine: the Gershgorin bound (eq. 1.18) must not be below
+  // the largest eigenvalue of the Jacobian, and should not be far above it (sub-steps wasted).
+  const auto material = make_material(2.0);
+  const auto internal = initial_internal(material);
+  std::mt19937 generator(12);
+  const double apex = kCohesion / std::tan(to_radians(kFrictionAngle));
+  for (const std::array<double, 3> principal :
+       {std::array<double, 3>{-95e3, -100e3, -400e3}, std::array<double, 3>{-60e3, -100e3, -300e3},
+        std::array<double, 3>{apex + 3e3, apex + 2e3, apex + 1e3}}) {
+    const SymmetricTensor stress = rotated_principal(principal, random_rotation(generator));
+    const double measured = measured_relaxation_rate(material, stress, internal);
+    const double bound = material.source_stiffness(stress, internal);
+    // Finite-difference error ~1e-6 relative; the bound may exceed the rate by the off-diagonal
+    // couplings it adds up (a factor below 3 here).
+    EXPECT_GE(bound, measured * (1.0 - 1e-6)) << principal[0];
+    EXPECT_LE(bound, 3.0 * measured) << principal[0];
+  }
+}
+
 TEST(PerzynaMohrCoulomb, NoFlowInsideTheHexagon) {
   const auto material = make_material(5.0);
   const auto internal = initial_internal(material);
