@@ -5,7 +5,9 @@
 
 #include "rktsph/materials/linear_elastic.hpp"
 #include "rktsph/materials/parameter_reader.hpp"
+#include "rktsph/materials/perzyna_drucker_prager.hpp"
 #include "rktsph/materials/perzyna_modified_cam_clay.hpp"
+#include "rktsph/materials/perzyna_mohr_coulomb.hpp"
 #include "rktsph/materials/perzyna_von_mises.hpp"
 
 namespace rktsph {
@@ -18,6 +20,8 @@ const std::map<std::string, Creator>& registry() {
       {"linear_elastic", &LinearElastic::from_parameters},
       {"perzyna_von_mises", &PerzynaVonMises::from_parameters},
       {"perzyna_modified_cam_clay", &PerzynaModifiedCamClay::from_parameters},
+      {"perzyna_drucker_prager", &PerzynaDruckerPrager::from_parameters},
+      {"perzyna_mohr_coulomb", &PerzynaMohrCoulomb::from_parameters},
   };
   return creators;
 }

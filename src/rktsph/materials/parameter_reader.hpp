@@ -4,6 +4,7 @@
 
 #include <set>
 #include <string>
+#include <vector>
 
 #include "rktsph/case/case_description.hpp"
 
@@ -19,12 +20,19 @@ class ParameterReader {
   /// An optional number with a default.
   double optional(const std::string& key, double fallback, double min, double max,
                   bool open_min = false, bool open_max = false);
+  /// An optional word that must be one of `allowed` (the case file's non-numeric values, e.g.
+  /// "matching: plane_strain"), with a default.
+  std::string optional_word(const std::string& key, const std::string& fallback,
+                            const std::vector<std::string>& allowed);
   /// Throws for every key of the block that was not asked for.
   void reject_unknown_keys() const;
 
  private:
   double checked(const std::string& key, const Parameter& p, double min, double max, bool open_min,
                  bool open_max) const;
+  /// Throws if `key` holds a word where a number is wanted.
+  void reject_word(const std::string& key, double min, double max, bool open_min,
+                   bool open_max) const;
   const ParameterBlock& block_;
   std::set<std::string> asked_;
 };

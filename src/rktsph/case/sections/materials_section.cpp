@@ -1,11 +1,19 @@
 // The `materials` section: named blocks whose parameter names and ranges belong to each material
-// model (docs/input-reference.md, "materials"); here they only have to be numbers.
+// model (docs/input-reference.md, "materials"); here they only have to be numbers, or names for
+// the few word-valued keys of kMaterialWordKeys.
 #include "rktsph/case/sections/sections.hpp"
 #include "rktsph/case/sections/value_readers.hpp"
+
+#include <set>
+#include <string>
 
 namespace rktsph {
 
 namespace {
+
+/// The keys of material blocks whose values are words, not numbers: `matching` of
+/// perzyna_drucker_prager. The material checks the word; here it only has to be a name.
+const std::set<std::string> kMaterialWordKeys = {"matching"};
 
 ParameterBlock read_material(const YamlNode& entry, ErrorList& errors) {
   ParameterBlock parameters;
@@ -23,6 +31,11 @@ ParameterBlock read_material(const YamlNode& entry, ErrorList& errors) {
     for (const YamlNode& value : entry.children) {
       if (value.key == "model") continue;
       errors.attempt([&] {
+        if (kMaterialWordKeys.count(value.key)) {
+          parameters.words[value.key] = {
+              to_identifier(value, kFieldAlphabet, "a word such as plane_strain"), value.where};
+          return;
+        }
         parameters.values[value.key] = Parameter{to_number(value), value.where};
       });
     }
