@@ -20,7 +20,9 @@ namespace rktsph {
 namespace {
 
 void log_folder(RunLog& log, const OutputFolder& folder) {
-  if (folder.removed_results() > 0)
+  if (folder.replaced_setup_record())
+    log.info("replaced the record of an earlier run that failed before its first field file");
+  else if (folder.removed_results() > 0)
     log.info(fmt::format("--overwrite: removed {} result files of an earlier run",
                          folder.removed_results()));
   if (folder.removed_temporaries() > 0)
@@ -33,6 +35,8 @@ void log_end(RunLog& log, const RunOutcome& outcome, double simulated_time) {
   if (outcome.status == RunStatus::Completed)
     log.info(fmt::format("completed {} steps to t = {:.6g} s in {:.3f} s wall", outcome.steps,
                          simulated_time, outcome.wall_seconds));
+  else if (outcome.status == RunStatus::Interrupted)  // asked for by the user: no error
+    log.info(fmt::format("{}: {}", run_status_name(outcome.status), outcome.message));
   else
     log.error(fmt::format("{}: {}", run_status_name(outcome.status), outcome.message));
 }
