@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "rktsph/case/case_reader.hpp"
+#include "rktsph/case/plausibility.hpp"
 #include "rktsph/core/build_info.hpp"
 #include "rktsph/output/atomic_file.hpp"
 #include "rktsph/output/checkpoint_writer.hpp"
@@ -69,6 +70,7 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
   std::unique_ptr<Simulation> simulation;
   std::unique_ptr<FieldSeriesWriter> series;
   std::unique_ptr<ProbeRecorder> probes;
+  std::vector<std::string> warnings;
   try {
     write_file_atomically(directory / "case.yaml", resolved_case);
     simulation = std::make_unique<Simulation>(description, options.limits);
@@ -78,6 +80,11 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
                     simulation->nodes().sph_nodes.size(), simulation->nodes().stress_points.size(),
                     simulation->step().operators().boundary_nodes.size(), simulation->time_step(),
                     simulation->total_steps(), omp_get_max_threads()));
+    warnings = warning_lines(plausibility_warnings(description, simulation->time_step()));
+    for (const std::string& warning : warnings) {
+      log.warning(warning);
+      if (options.progress_stream) *options.progress_stream << "rktsph: " << warning << "\n";
+    }
     series = std::make_unique<FieldSeriesWriter>(*simulation, directory);
     probes = std::make_unique<ProbeRecorder>(*simulation, directory / "probes.csv");
   } catch (const std::exception& error) {
@@ -91,7 +98,7 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
   }
 
   EnergyBudget energy;
-  SummaryWriter summary(directory / "summary.json", &energy);
+  SummaryWriter summary(directory / "summary.json", &energy, warnings);
   simulation->add_observer(*series);
   simulation->add_observer(*probes);
   simulation->add_observer(energy);  // before the summary, which reports its totals
@@ -137,6 +144,7 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
   outcome.directory = directory;
   outcome.steps = simulation->state().step;
   outcome.wall_seconds = simulation->wall_seconds();
+  outcome.warnings = std::move(warnings);
   log_end(log, outcome, simulation->state().time);
   if (inspect) inspect(*simulation);
   return outcome;

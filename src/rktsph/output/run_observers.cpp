@@ -442,6 +442,10 @@ void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,
   summary.set("boundary_nodes", simulation.step().operators().boundary_nodes.size());
   summary.set("threads", omp_get_max_threads());
   set_program(summary);
+  JsonValue warnings = JsonValue::array();
+  for (const std::string& warning : warnings_)
+    warnings.push_back(warning);
+  summary.set("warnings", std::move(warnings));
   const StepTimeSplit split = simulation.step().time_split();
   JsonValue step_time = JsonValue::object();
   step_time.set("cell_lists_seconds", split.cell_lists);

@@ -113,14 +113,17 @@ class ProbeRecorder final : public Observer, public Checkpointed {
 /// with the energy budget of `energy` when given (its totals at the last step it observed).
 class SummaryWriter final : public Observer {
  public:
-  explicit SummaryWriter(std::filesystem::path path, const EnergyBudget* energy = nullptr)
-      : path_(std::move(path)), energy_(energy) {}
+  /// `warnings`: the case's plausibility warnings, listed as `warnings` (empty: none).
+  explicit SummaryWriter(std::filesystem::path path, const EnergyBudget* energy = nullptr,
+                         std::vector<std::string> warnings = {})
+      : path_(std::move(path)), energy_(energy), warnings_(std::move(warnings)) {}
   void on_finish(const Simulation& simulation, RunStatus status,
                  const std::string& message) override;
 
  private:
   std::filesystem::path path_;
   const EnergyBudget* energy_;
+  std::vector<std::string> warnings_;
 };
 
 /// summary.json for a run that failed before its loop started (a setup or input error found after
