@@ -131,7 +131,30 @@ std::vector<std::string> output_field_selection(const Simulation& simulation) {
                        allowed);
     }
   }
-  return output.fields.empty() ? available : output.fields;
+  if (output.fields.empty()) return available;
+  // The points of a field file are X + u: with u beside them, X (and a drawing at X + M u) can
+  // always be recovered.
+  std::vector<std::string> selection = output.fields;
+  if (std::find(selection.begin(), selection.end(), "displacement") == selection.end())
+    selection.insert(selection.begin(), "displacement");
+  return selection;
+}
+
+// The current positions X + u of the SPH nodes, one array per axis of the dimension. Every model
+// writes these, so that a field file's points mean one thing: a small-deformation model keeps its
+// configuration at X, a large-deformation one moves it to X + u (docs/theory.md §9.1).
+std::vector<std::vector<double>> current_positions(const Simulation& simulation) {
+  const PointCloud& reference = simulation.nodes().sph_nodes;
+  const FieldArray& displacement = simulation.state().displacement;
+  std::vector<std::vector<double>> positions(static_cast<std::size_t>(reference.dimension));
+  for (int a = 0; a < reference.dimension; ++a) {
+    const auto axis = static_cast<std::size_t>(a);
+    const double* u = displacement.field(a);
+    positions[axis].resize(reference.size());
+    for (std::size_t i = 0; i < reference.size(); ++i)
+      positions[axis][i] = reference.position[axis][i] + u[i];
+  }
+  return positions;
 }
 
 }  // namespace
@@ -240,7 +263,13 @@ void FieldSeriesWriter::write(const Simulation& simulation) {
     }
   }
   const std::string file = fmt::format("fields/fields_{:06d}.vtu", collection_.entries().size());
-  write_vtu(directory_ / file, state.configuration.sph_nodes, fields);  // current positions
+  const std::vector<std::vector<double>> positions = current_positions(simulation);
+  PointPositions points;
+  points.dimension = static_cast<int>(positions.size());
+  points.count = n;
+  for (std::size_t a = 0; a < positions.size(); ++a)
+    points.coordinates[a] = positions[a].data();
+  write_vtu(directory_ / file, points, fields);
   collection_.add(state.time, file);
   last_written_time_ = state.time;
 }
