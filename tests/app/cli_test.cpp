@@ -475,6 +475,19 @@ TEST(CommandLine, DivergingRunStopsWithADiagnosisAndKeepsItsLastGoodOutput) {
   const std::string text_summary((std::istreambuf_iterator<char>(summary)),
                                  std::istreambuf_iterator<char>());
   EXPECT_NE(text_summary.find("\"diverged\""), std::string::npos) << text_summary;
+  // The last field file is the state before the step that diverged (its last good state), not the
+  // regular output of up to 0.25 s before: at t = (the time named) - dt.
+  const std::size_t at = result.output.find("diverged at step");
+  const std::size_t time_at = result.output.find("(t = ", at);
+  ASSERT_NE(time_at, std::string::npos) << result.output;
+  const double stopped = std::stod(result.output.substr(time_at + 5));
+  const std::size_t step_at = text_summary.find("\"time_step\": ");
+  ASSERT_NE(step_at, std::string::npos) << text_summary;
+  const double dt = std::stod(text_summary.substr(step_at + 13));
+  const std::string pvd = read_whole_file(out / "series.pvd");
+  const std::size_t last = pvd.rfind("timestep=\"");
+  ASSERT_NE(last, std::string::npos) << pvd;
+  EXPECT_NEAR(std::stod(pvd.substr(last + 10)), stopped - dt, 1e-5 * stopped) << pvd;
   if (!fs::exists("/usr/bin/python3")) GTEST_SKIP() << "/usr/bin/python3 not installed";
   const std::string reader =
       std::string("/usr/bin/python3 ") + RKTSPH_TEST_DATA_DIR + "/../output/read_vtu.py ";

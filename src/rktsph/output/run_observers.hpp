@@ -58,7 +58,8 @@ class FieldSeriesWriter final : public Observer, public Checkpointed {
   std::size_t files_written() const { return collection_.entries().size(); }
 
  private:
-  void write(const Simulation& simulation);
+  /// Writes `state` (the simulation's, or its last good one) as the next field file.
+  void write(const Simulation& simulation, const State& state);
   std::filesystem::path directory_;
   PvdCollection collection_;
   std::vector<std::string> selection_;
