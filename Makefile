@@ -9,8 +9,11 @@ RESULTS ?= results
 # Debian packages the build and the tests need (Debian 12).
 DEB_PACKAGES := build-essential cmake libeigen3-dev libyaml-cpp-dev libcli11-dev libfmt-dev \
                 libgtest-dev libgmock-dev libbenchmark-dev python3 libcgal-dev
-# Extra packages for the validation report (plots, browser check); not needed by `make test`.
+# Extra packages for the validation report (plots, browser check).
 DEB_REPORT_PACKAGES := python3-matplotlib chromium
+# Extra packages for `make test`: the report tools' tests (tests/app/report_tools_test.cpp) are
+# skipped without matplotlib.
+DEB_TEST_PACKAGES := python3-matplotlib
 # Extra packages for the sanitizer build with the libFuzzer targets (`make fuzz`, .ci/run): clang,
 # its sanitizer and libFuzzer runtimes, and its OpenMP.
 # The peer code of `make bench-peers` (bench/README.md): PySPH, from Debian.
@@ -23,7 +26,7 @@ FUZZ_SECONDS ?= 60
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: deps deps-report deps-format deps-fuzz deps-peers format-check configure build run test bench bench-peers validate fuzz format clean
+.PHONY: deps deps-test deps-report deps-format deps-fuzz deps-peers format-check configure build run test bench bench-peers validate fuzz format clean
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
@@ -31,6 +34,12 @@ deps:
 	  echo "Installing Debian packages:$$missing"; \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; \
 	else echo "All build dependencies present."; fi
+
+deps-test: deps
+	@missing=""; for p in $(DEB_TEST_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  echo "Installing Debian packages for the tests:$$missing"; \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; fi
 
 deps-report: deps
 	@missing=""; for p in $(DEB_REPORT_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
@@ -52,8 +61,14 @@ deps-fuzz: deps
 	if [ -n "$$missing" ]; then \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; fi
 
+# On a fresh machine the first failure is a missing library (Eigen3): say how to get them all.
 configure:
-	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(CMAKE_FLAGS)
+	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(CMAKE_FLAGS) || { \
+	  missing=""; if command -v dpkg >/dev/null 2>&1; then \
+	    for p in $(DEB_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; fi; \
+	  echo; echo "make: configuring failed. If a library was not found, run 'make deps' first"; \
+	  echo "      (it installs the Debian packages the build needs$${missing:+; missing here:$$missing})."; \
+	  exit 1; }
 
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
@@ -63,7 +78,7 @@ run: deps build
 	@echo
 	@echo "Results are in $(RESULTS)/$(notdir $(patsubst %/,%,$(dir $(CASE)))) (open series.pvd in ParaView)."
 
-test: deps build
+test: deps-test build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 bench: deps build

@@ -3,6 +3,7 @@
 // folder that cannot be created or holds results without --overwrite), 3 a run diverged, failed
 // or could not proceed (also: output folder in use by another run), 130/143 interrupted by
 // SIGINT/SIGTERM.
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <omp.h>
 #include <sys/wait.h>
@@ -15,7 +16,9 @@
 #include <filesystem>
 #include <iostream>
 
+#include "check_line.hpp"
 #include "rktsph/case/case_reader.hpp"
+#include "rktsph/case/plausibility.hpp"
 #include "rktsph/core/build_info.hpp"
 #include "rktsph/core/error.hpp"
 #include "rktsph/driver/interrupt.hpp"
@@ -39,10 +42,19 @@ std::vector<CaseOverride> parse_overrides(const std::vector<std::string>& texts)
   return overrides;
 }
 
-std::filesystem::path default_cases_directory() {
-  if (const char* env = std::getenv("RKTSPH_CASES")) return env;
-  if (std::filesystem::exists("cases")) return "cases";
-  return std::filesystem::path(RKTSPH_SOURCE_DIR) / "cases";
+// The folder of the validation cases, and how it was chosen (for the error when a case is not
+// there). The bundled cases unless told otherwise: a user's own ./cases folder is theirs, not the
+// validation's.
+struct CasesFolder {
+  std::filesystem::path path;
+  std::string chosen_by;
+};
+
+CasesFolder validation_cases_folder(const std::string& option) {
+  if (!option.empty()) return {option, "--cases"};
+  if (const char* env = std::getenv("RKTSPH_CASES")) return {env, "RKTSPH_CASES"};
+  return {std::filesystem::path(RKTSPH_SOURCE_DIR) / "cases",
+          "the bundled cases; --cases DIR or RKTSPH_CASES=DIR for others"};
 }
 
 // The report and plotting tools are Python scripts (matplotlib) in tools/; found like the cases.
@@ -52,11 +64,10 @@ std::filesystem::path tools_directory() {
   return std::filesystem::path(RKTSPH_SOURCE_DIR) / "tools";
 }
 
-constexpr const char* kPython = "/usr/bin/python3";
-
-/// Runs a program with its arguments (no shell, so no quoting problems) and returns its exit
-/// status, or -1 if it could not be started or did not exit normally.
-int run_program(const std::vector<std::string>& arguments) {
+/// Runs a program with its arguments (no shell, so no quoting problems; a name without a slash
+/// is looked up in PATH) and returns its exit status, or -1 if it could not be started or did not
+/// exit normally. `silent`: its output goes to /dev/null.
+int run_program(const std::vector<std::string>& arguments, bool silent = false) {
   std::vector<char*> argv;
   for (const std::string& argument : arguments)
     argv.push_back(const_cast<char*>(argument.c_str()));
@@ -65,7 +76,12 @@ int run_program(const std::vector<std::string>& arguments) {
   const pid_t child = fork();
   if (child < 0) return -1;
   if (child == 0) {
-    execv(argv[0], argv.data());
+    if (silent) {
+      const int null = open("/dev/null", O_WRONLY);
+      dup2(null, STDOUT_FILENO);
+      dup2(null, STDERR_FILENO);
+    }
+    execvp(argv[0], argv.data());
     std::cerr << "rktsph: cannot start " << arguments[0] << ": " << std::strerror(errno) << "\n";
     _exit(127);
   }
@@ -75,17 +91,27 @@ int run_program(const std::vector<std::string>& arguments) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// The interpreter of the tools: the python3 of PATH, as a shell would take it (a virtual
+// environment's, with its own matplotlib), unless that one lacks matplotlib and Debian's
+// /usr/bin/python3, where `make deps-report` installs it, has it.
+std::string tools_python() {
+  for (const char* candidate : {"python3", "/usr/bin/python3"})
+    if (run_program({candidate, "-c", "import matplotlib"}, true) == 0) return candidate;
+  return "python3";  // the tool then says that matplotlib is missing
+}
+
 /// Runs a tools/ script; its own messages go to stderr. Throws RunError if it cannot start.
 int run_tool(const std::string& script, std::vector<std::string> arguments) {
   const std::filesystem::path path = tools_directory() / script;
   if (!std::filesystem::exists(path))
     throw RunError(
         fmt::format("{} not found (set RKTSPH_TOOLS to the tools/ folder)", path.string()));
-  arguments.insert(arguments.begin(), {kPython, path.string()});
+  const std::string python = tools_python();
+  arguments.insert(arguments.begin(), {python, path.string()});
   const int status = run_program(arguments);
   if (status == 127 || status < 0)
-    throw RunError(
-        fmt::format("could not run {} {} (is python3 installed?)", kPython, path.string()));
+    throw RunError(fmt::format("could not run {} {} (is python3 installed and on PATH?)", python,
+                               path.string()));
   return status;
 }
 
@@ -109,14 +135,30 @@ CLI::Validator integer_in_range(int low, int high) {
       fmt::format("INT in [{} - {}]", low, high));
 }
 
+std::string command_names(const CLI::App& app) {
+  std::string known;
+  for (const CLI::App* command : app.get_subcommands({}))
+    known += (known.empty() ? "" : ", ") + command->get_name();
+  return known;
+}
+
+// `rktsph` alone: CLI11 would only say "A subcommand is required"; a first-time user needs the
+// commands and what each does.
+bool explain_missing_command(const CLI::App& app, int argc) {
+  if (argc >= 2) return false;
+  std::string text = "rktsph: a command is needed (rktsph COMMAND --help for its options):\n";
+  for (const CLI::App* command : app.get_subcommands({}))
+    text += fmt::format("  {:<10} {}\n", command->get_name(), command->get_description());
+  std::cerr << text;
+  return true;
+}
+
 // `rktsph foo`: CLI11 would only say "A subcommand is required".
 bool reject_unknown_command(const CLI::App& app, int argc, char** argv) {
   if (argc < 2 || argv[1][0] == '-') return false;
-  std::string known;
-  for (const CLI::App* command : app.get_subcommands({})) {
+  for (const CLI::App* command : app.get_subcommands({}))
     if (command->get_name() == argv[1]) return false;
-    known += (known.empty() ? "" : ", ") + command->get_name();
-  }
+  const std::string known = command_names(app);
   std::cerr << fmt::format("rktsph: unknown command '{}'; the commands are {} (rktsph --help)\n",
                            argv[1], known);
   return true;
@@ -180,24 +222,36 @@ int command_run(const std::string& case_path, const std::string& output, int thr
   return 0;
 }
 
-int command_check(const std::string& case_path, const std::vector<std::string>& sets,
+int command_check(const std::string& case_path, const std::vector<std::string>& sets, int threads,
                   const SimulationLimits& limits) {
+  // The stencils are built here as in a run, so the threads a run would use are honoured.
+  if (threads > 0) omp_set_num_threads(threads);
   const CaseDescription description = read_case_file(case_path, parse_overrides(sets));
   // Building the simulation checks materials, groups, boundary conditions and stencils too; the
   // observers' settings are checked as run checks them, without writing anything.
   const Simulation simulation(description, limits);
   check_run_observers(simulation);
+  const std::vector<CaseWarning> warnings =
+      plausibility_warnings(description, simulation.time_step());
+  for (const CaseWarning& warning : warnings)
+    std::cerr << "rktsph: " << warning.to_string() << "\n";
+  std::cerr.flush();
+  const std::string warning_count =
+      warnings.empty()
+          ? ""
+          : fmt::format(", {} warning{}", warnings.size(), warnings.size() > 1 ? "s" : "");
   std::cout << fmt::format(
       "{}: OK ({} SPH nodes, {} stress points, dt = {:.4g} s, {} steps, memory about {:.3g} "
-      "MB)\n",
+      "MB{})\n",
       case_path, simulation.nodes().sph_nodes.size(), simulation.nodes().stress_points.size(),
-      simulation.time_step(), simulation.total_steps(), simulation.estimated_memory() * 1e-6);
+      simulation.time_step(), simulation.total_steps(), simulation.estimated_memory() * 1e-6,
+      warning_count);
   return 0;
 }
 
 int command_validate(std::vector<std::string> names, bool all, bool quick, bool json,
                      const std::string& output, const std::string& report, int threads, int jobs,
-                     const std::vector<std::string>& sets) {
+                     const std::vector<std::string>& sets, const std::string& cases_option) {
   const auto& cases = validation_cases();
   if (all || names.empty())
     for (const ValidationCase& c : cases)
@@ -222,8 +276,13 @@ int command_validate(std::vector<std::string> names, bool all, bool quick, bool 
       std::filesystem::weakly_canonical(report) != std::filesystem::weakly_canonical(output))
     throw InputError({}, "validate --output", output, "the runs of a report go to its folder",
                      "the --report folder, or no --output");
+  const CasesFolder cases_folder = validation_cases_folder(cases_option);
+  if (!std::filesystem::is_directory(cases_folder.path))
+    throw InputError({}, "validate --cases", cases_folder.path.string(),
+                     fmt::format("no folder of validation cases here ({})", cases_folder.chosen_by),
+                     "a folder holding <case>/case.yaml, such as the cases/ of the sources");
   ValidationContext context;
-  context.cases_directory = default_cases_directory();
+  context.cases_directory = cases_folder.path;
   context.output_directory = !report.empty()  ? report
                              : output.empty() ? "results/validation"
                                               : output;
@@ -245,14 +304,11 @@ int command_validate(std::vector<std::string> names, bool all, bool quick, bool 
     std::cout << fmt::format("{:<28} {}  ({:.1f} s)\n", result.case_name,
                              result.passed ? "PASSED" : "FAILED", result.wall_seconds);
     if (!result.error.empty()) std::cout << "    error: " << result.error << "\n";
-    for (const CheckResult& check : result.checks) {
-      const char* bound = check.comparison == "at_least"  ? "at least"
-                          : check.comparison == "at_most" ? "at most"
-                                                          : "tolerance";
-      std::cout << fmt::format("    {:<32} {:>12.5g} (reference {:.5g}, {} {:.3g} {})  {}\n",
-                               check.name, check.value, check.reference, bound, check.tolerance,
-                               check.unit, check.passed ? "ok" : "FAIL");
-    }
+    if (result.error.find("cannot open the case file") != std::string::npos)
+      std::cout << fmt::format("    (the cases were looked for in {}: {})\n",
+                               cases_folder.path.string(), cases_folder.chosen_by);
+    for (const CheckResult& check : result.checks)
+      std::cout << check_line(check);
     std::cout << std::flush;
   });
   if (!report.empty()) {
@@ -281,7 +337,11 @@ int command_plot(const std::string& run_directory, const std::string& field, int
   if (time >= 0.0) arguments.insert(arguments.end(), {"--time", fmt::format("{:.17g}", time)});
   const int status = run_tool("plot_field.py", arguments);
   // plot_field.py: 2 for input it cannot use (no such run, field or component).
-  if (status == 0) return 0;
+  if (status == 0) {
+    std::cout << fmt::format("{}: particles drawn at X + {:g} u (X reference, u displacement)\n",
+                             output, magnification);
+    return 0;
+  }
   return status == 2 ? kExitInput : kExitRun;
 }
 
@@ -321,6 +381,10 @@ int main(int argc, char** argv) {
   check->add_option("case", case_path, "Case file (YAML)")->required();
   check->add_option("--set", sets, "Override a case key (repeatable)");
   check->add_option("--max-nodes", limits.max_nodes, max_nodes_help)->check(CLI::PositiveNumber);
+  check
+      ->add_option("--threads", threads,
+                   "OpenMP threads for building the stencils (default: all cores)")
+      ->check(integer_in_range(1, 1024));
 
   std::vector<std::string> names;
   bool all = false, quick = false, json = false;
@@ -343,6 +407,10 @@ int main(int argc, char** argv) {
       ->add_option("--jobs", jobs,
                    "Cases run at once (default: one per core when several are asked, else 1)")
       ->check(integer_in_range(1, 1024));
+  std::string cases_option;
+  validate->add_option("--cases", cases_option,
+                       "Folder of the validation cases (default: RKTSPH_CASES, else the bundled "
+                       "cases of the sources)");
   std::string report;
   validate->add_option("--report", report,
                        "Also write a report with plots to this folder (index.html, index.md); "
@@ -362,9 +430,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(-1, 8));
   plot->add_option("--time", plot_time, "Output time to draw, nearest one [s] (default: last)");
   plot->add_option("--magnify", magnification,
-                   "Draw particles at x + M * displacement (default 0: undeformed)");
+                   "Draw particles at X + M u, X the reference position and u the displacement, "
+                   "for every model (default 0: undeformed; 1: the current positions)");
   plot->add_option("-o,--output", output, "PNG file to write")->required();
 
+  if (explain_missing_command(app, argc)) return kExitInput;
   if (reject_unknown_command(app, argc, argv)) return kExitInput;
   try {
     app.parse(argc, argv);
@@ -376,9 +446,10 @@ int main(int argc, char** argv) {
   try {
     if (*run)
       return command_run(case_path, output, threads, sets, quiet, overwrite, restart, limits);
-    if (*check) return command_check(case_path, sets, limits);
+    if (*check) return command_check(case_path, sets, threads, limits);
     if (*validate)
-      return command_validate(names, all, quick, json, output, report, threads, jobs, sets);
+      return command_validate(names, all, quick, json, output, report, threads, jobs, sets,
+                              cases_option);
     if (*plot)
       return command_plot(run_directory, field, component, plot_time, magnification, output);
   } catch (const InputError& error) {

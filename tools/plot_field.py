@@ -6,8 +6,9 @@
 
 Reads RUN_DIR/series.pvd, takes the snapshot whose time is nearest T (the last one without
 --time), reads its .vtu with the test suite's independent reader (tests/output/read_vtu.py) and
-draws every particle as a square of the lattice spacing, coloured by the field, at its position
-plus M times its displacement. --component picks one entry of the VTK tuple (stress: 0 = xx,
+draws every particle as a square of the lattice spacing, coloured by the field, at X + M u: X its
+reference position, u its displacement, for every model (M = 0: the undeformed body, M = 1: the
+current positions, which are the points of the field files). --component picks one entry of the VTK tuple (stress: 0 = xx,
 1 = xy, 4 = yy; velocity: 0 = x, 1 = y); without it a scalar is drawn as is and a vector or
 tensor as its magnitude. --dump prints what would be drawn as JSON (for tests); -o is then
 optional.
@@ -79,18 +80,30 @@ def field_values(grid, field, component):
 
 
 def drawn_positions(grid, magnification):
-    """x and y of each point, moved by magnification x displacement."""
+    """x and y of each point at X + magnification * u. The points of a field file are the current
+    positions X + u (every model), so X + M u = points + (M - 1) u."""
     points = grid["Points"]["values"]
     count = grid["NumberOfPoints"]
     x = [points[3 * i] for i in range(count)]
     y = [points[3 * i + 1] for i in range(count)]
-    if magnification != 0:
+    if magnification != 1:
         if "displacement" not in grid["PointData"]:
-            raise InputProblem("--magnify needs the displacement field in the output")
+            raise InputProblem("this output has no displacement field, so only --magnify 1 "
+                               "(the current positions) can be drawn")
         displacement = grid["PointData"]["displacement"]["values"]
-        x = [x[i] + magnification * displacement[3 * i] for i in range(count)]
-        y = [y[i] + magnification * displacement[3 * i + 1] for i in range(count)]
+        shift = magnification - 1.0
+        x = [x[i] + shift * displacement[3 * i] for i in range(count)]
+        y = [y[i] + shift * displacement[3 * i + 1] for i in range(count)]
     return x, y
+
+
+def positions_text(magnification):
+    """What the drawn positions are, for the title."""
+    if magnification == 0:
+        return "undeformed, X"
+    if magnification == 1:
+        return "current positions, X + u"
+    return f"X + {magnification:g} u"
 
 
 def lattice_spacing(grid):
@@ -186,11 +199,10 @@ def main(arguments):
     time = snapshot["timestep"]
     if options.dump:
         print(json.dumps({"time": time, "file": snapshot["file"], "label": label, "x": x,
-                          "y": y, "values": values}))
+                          "y": y, "values": values,
+                          "positions": positions_text(options.magnify)}))
     if options.output:
-        title = f"{options.title or label}, t = {time:.4g} s"
-        if options.magnify != 0:
-            title += f" (displacements x {options.magnify:g})"
+        title = f"{options.title or label}, t = {time:.4g} s ({positions_text(options.magnify)})"
         draw(options.output, x, y, values, lattice_spacing(grid), label,
              UNITS.get(options.field, "-"), title)
     return 0

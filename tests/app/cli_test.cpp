@@ -6,6 +6,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <yaml-cpp/yaml.h>
+
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -13,6 +15,8 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "../support/shell.hpp"
 #include "../support/small_bar.hpp"
@@ -62,6 +66,75 @@ TEST(CommandLine, VersionAndHelp) {
   EXPECT_NE(version.output.find("rktsph "), std::string::npos);
   EXPECT_EQ(run("run --help").status, 0);
   EXPECT_EQ(run("no-such-command").status, 2);
+}
+
+// `rktsph` alone is what a new user types first: it should say which commands there are and
+// what each does, not only that one is required.
+TEST(CommandLine, NoCommandListsTheCommands) {
+  const Result result = run("");
+  EXPECT_EQ(result.status, 2);
+  for (const char* line : {"run ", "check ", "validate ", "plot "})
+    EXPECT_NE(result.output.find(std::string("  ") + line), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("Validate a case file without running it"), std::string::npos)
+      << result.output;
+  EXPECT_EQ(result.output.find("A subcommand is required"), std::string::npos) << result.output;
+}
+
+// check builds the stencils as run does, so it takes the same --threads.
+TEST(CommandLine, CheckTakesThreadsAsRunDoes) {
+  const fs::path case_file = write_case("threads.yaml", kBar);
+  const Result result = run("check " + case_file.string() + " --threads 1");
+  EXPECT_EQ(result.status, 0) << result.output;
+  EXPECT_EQ(run("check " + case_file.string() + " --threads 0").status, 2);
+}
+
+// The interpreter of `rktsph plot` is the python3 of PATH (a virtual environment's, with its
+// matplotlib) when it has matplotlib, not always /usr/bin/python3. The stand-in python3 here says
+// yes to everything and records what it was asked to run.
+TEST(CommandLine, PlotRunsThePython3OfPath) {
+  const fs::path bin = scratch("fake-python-bin");
+  fs::create_directories(bin);
+  const fs::path marker = scratch("fake-python-called");
+  fs::remove(marker);
+  std::ofstream(bin / "python3") << "#!/bin/sh\necho \"$@\" > " << marker.string() << "\nexit 0\n";
+  fs::permissions(bin / "python3", fs::perms::owner_all);
+  const Result result = rktsph::test::shell(
+      "PATH=" + bin.string() + ":\"$PATH\" " + RKTSPH_BINARY + " plot " +
+      scratch("no-run").string() + " --field velocity -o " + scratch("p.png").string() + " 2>&1");
+  EXPECT_EQ(result.status, 0) << result.output;
+  EXPECT_NE(read_whole_file(marker).find("plot_field.py"), std::string::npos);
+}
+
+// A user's own ./cases folder is theirs: validate still finds the bundled cases.
+TEST(CommandLine, ValidateUsesTheBundledCasesBesideTheUsersOwn) {
+  const fs::path work = scratch("own-cases");
+  fs::create_directories(work / "cases" / "my-slope");
+  std::ofstream(work / "cases" / "my-slope" / "case.yaml") << kBar;
+  const Result result = rktsph::test::shell("cd " + work.string() + " && " + RKTSPH_BINARY +
+                                            " validate bar1d-elastic --quick --threads 1 -o " +
+                                            (work / "out").string() + " 2>&1");
+  EXPECT_EQ(result.status, 0) << result.output;
+}
+
+// When the cases are not where validate looks, the error names that folder and how to change it.
+TEST(CommandLine, ValidateNamesTheFolderItLookedIn) {
+  const fs::path missing = scratch("no-such-cases-folder");
+  const Result from_environment = rktsph::test::shell(
+      "RKTSPH_CASES=" + missing.string() + " " + RKTSPH_BINARY + " validate bar1d-elastic 2>&1");
+  EXPECT_EQ(from_environment.status, 2) << from_environment.output;
+  EXPECT_NE(from_environment.output.find(missing.string()), std::string::npos)
+      << from_environment.output;
+  EXPECT_NE(from_environment.output.find("RKTSPH_CASES"), std::string::npos)
+      << from_environment.output;
+
+  const fs::path empty = scratch("empty-cases-folder");
+  fs::create_directories(empty);
+  const Result from_option = run("validate bar1d-elastic --quick --cases " + empty.string() +
+                                 " -o " + scratch("empty-cases-out").string());
+  EXPECT_EQ(from_option.status, 1) << from_option.output;
+  EXPECT_NE(from_option.output.find("the cases were looked for in " + empty.string() + ": --cases"),
+            std::string::npos)
+      << from_option.output;
 }
 
 TEST(CommandLine, VersionNamesTheCommitAndTheBuildType) {
@@ -216,7 +289,7 @@ void expect_interrupted_record(const fs::path& out, const std::string& signal_na
   const std::string summary = read_whole_file(out / "summary.json");
   EXPECT_NE(summary.find("\"status\": \"interrupted\""), std::string::npos) << summary;
   EXPECT_NE(summary.find(signal_name + " received"), std::string::npos) << summary;
-  EXPECT_NE(read_whole_file(out / "run.log").find("ERROR interrupted: interrupted at step"),
+  EXPECT_NE(read_whole_file(out / "run.log").find("INFO interrupted: interrupted at step"),
             std::string::npos);
   // The probes on disk reach the step it stopped at (step 0 if the signal came that early).
   const std::size_t key = summary.find("\"simulated_time\": ");
@@ -402,12 +475,138 @@ TEST(CommandLine, DivergingRunStopsWithADiagnosisAndKeepsItsLastGoodOutput) {
   const std::string text_summary((std::istreambuf_iterator<char>(summary)),
                                  std::istreambuf_iterator<char>());
   EXPECT_NE(text_summary.find("\"diverged\""), std::string::npos) << text_summary;
+  // The last field file is the state before the step that diverged (its last good state), not the
+  // regular output of up to 0.25 s before: at t = (the time named) - dt.
+  const std::size_t at = result.output.find("diverged at step");
+  const std::size_t time_at = result.output.find("(t = ", at);
+  ASSERT_NE(time_at, std::string::npos) << result.output;
+  const double stopped = std::stod(result.output.substr(time_at + 5));
+  const std::size_t step_at = text_summary.find("\"time_step\": ");
+  ASSERT_NE(step_at, std::string::npos) << text_summary;
+  const double dt = std::stod(text_summary.substr(step_at + 13));
+  const std::string pvd = read_whole_file(out / "series.pvd");
+  const std::size_t last = pvd.rfind("timestep=\"");
+  ASSERT_NE(last, std::string::npos) << pvd;
+  EXPECT_NEAR(std::stod(pvd.substr(last + 10)), stopped - dt, 1e-5 * stopped) << pvd;
   if (!fs::exists("/usr/bin/python3")) GTEST_SKIP() << "/usr/bin/python3 not installed";
   const std::string reader =
       std::string("/usr/bin/python3 ") + RKTSPH_TEST_DATA_DIR + "/../output/read_vtu.py ";
   for (const auto& entry : fs::directory_iterator(out / "fields"))
     EXPECT_EQ(std::system((reader + entry.path().string() + " > /dev/null").c_str()), 0)
         << entry.path();
+}
+
+// The points of a field file mean one thing for every model: the current positions X + u, with
+// u written beside them (a small-deformation model used to write X, a large-deformation one X + u).
+TEST(CommandLine, EveryModelWritesTheCurrentPositions) {
+  if (!fs::exists("/usr/bin/python3")) GTEST_SKIP() << "/usr/bin/python3 not installed";
+  const std::string checker =
+      std::string("/usr/bin/python3 ") + RKTSPH_TEST_DATA_DIR + "/../output/check_positions.py ";
+  // Without displacement among the fields asked for: it is written all the same.
+  const fs::path bar = write_case(
+      "positions.yaml",
+      replaced(kBar, "output: {interval: 0.01}", "output: {interval: 0.01, fields: [stress]}"));
+  const fs::path moving =
+      write_case("positions-ld.yaml",
+                 replaced(kBar, "name: bar\n", "name: bar\nmodel: dry_large_deformation\n"));
+  const std::string consolidation =
+      std::string(RKTSPH_SOURCE_DIR) + "/cases/vpw-consolidation/case.yaml";
+  const std::vector<std::pair<std::string, std::string>> runs = {
+      {"small-deformation", bar.string()},
+      {"large-deformation", moving.string()},
+      {"saturated", consolidation + " --set time.end=0.05 --set output.interval=0.01"}};
+  for (const auto& [model, arguments] : runs) {
+    const fs::path out = scratch("positions-" + model);
+    const Result result = run("run -q --overwrite " + arguments + " -o " + out.string());
+    ASSERT_EQ(result.status, 0) << model << ": " << result.output;
+    const Result check = rktsph::test::shell(checker + out.string() + " 2>&1");
+    EXPECT_EQ(check.status, 0) << model << ": " << check.output;
+  }
+}
+
+// `plot --magnify M` draws X + M u for every model: on a large-deformation run, whose points
+// were always X + u, M = 1 must be the current positions (not X + 2u) and M = 0 the reference.
+TEST(CommandLine, PlotMagnifiesTheDisplacementFromTheReferenceForEveryModel) {
+  if (!fs::exists("/usr/bin/python3")) GTEST_SKIP() << "/usr/bin/python3 not installed";
+  const fs::path moving =
+      write_case("magnify-ld.yaml",
+                 replaced(kBar, "name: bar\n", "name: bar\nmodel: dry_large_deformation\n"));
+  const fs::path out = scratch("magnify-ld");
+  ASSERT_EQ(run("run -q --overwrite " + moving.string() + " -o " + out.string()).status, 0);
+  const std::string plot = std::string("/usr/bin/python3 ") + RKTSPH_SOURCE_DIR +
+                           "/tools/plot_field.py " + out.string() + " --dump ";
+  const auto drawn_x = [&](const std::string& arguments) {
+    const Result result = rktsph::test::shell(plot + arguments);
+    EXPECT_EQ(result.status, 0) << result.output;
+    return YAML::Load(result.output)["x"].as<std::vector<double>>();
+  };
+  const std::vector<double> reference = drawn_x("--field displacement --time 0 --magnify 1");
+  const std::vector<double> u = YAML::Load(rktsph::test::shell(plot + "--field displacement "
+                                                                      "--component 0")
+                                               .output)["values"]
+                                    .as<std::vector<double>>();
+  const std::vector<double> undeformed = drawn_x("--field displacement --magnify 0");
+  const std::vector<double> current = drawn_x("--field displacement --magnify 1");
+  const std::vector<double> doubled = drawn_x("--field displacement --magnify 2");
+  ASSERT_EQ(u.size(), reference.size());
+  ASSERT_EQ(current.size(), reference.size());
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    EXPECT_NEAR(undeformed[i], reference[i], 1e-12) << i;
+    EXPECT_NEAR(current[i], reference[i] + u[i], 1e-12) << i;
+    EXPECT_NEAR(doubled[i], reference[i] + 2.0 * u[i], 1e-12) << i;
+  }
+  EXPECT_LT(u.back(), 0.0);  // the driven end moved, so the checks above are not 0 = 0
+}
+
+// E = 10 Pa and rho = 2 kg/m^3 (meant as MPa and t/m^3) are legal but no soil: check and run say
+// so, with the file and line, and run.log and summary.json keep the warnings; the run still
+// goes (a warning is never fatal).
+TEST(CommandLine, ImplausibleValuesAreWarnedOfByCheckAndRun) {
+  const fs::path ordinary = write_case("plausible.yaml", kBar);
+  const Result clean = run("check " + ordinary.string());
+  EXPECT_EQ(clean.status, 0) << clean.output;
+  EXPECT_EQ(clean.output.find("warning"), std::string::npos) << clean.output;
+
+  std::string text = replaced(kBar, "young_modulus: 1.0e8", "young_modulus: 10");
+  text = replaced(text, "density: 2000.0", "density: 2");
+  const fs::path path = write_case("implausible.yaml", text);
+  const Result checked = run("check " + path.string());
+  EXPECT_EQ(checked.status, 0) << checked.output;
+  EXPECT_NE(checked.output.find(path.string() + ":9:"), std::string::npos) << checked.output;
+  EXPECT_NE(checked.output.find("warning: key 'materials.soil.young_modulus' = 10"),
+            std::string::npos)
+      << checked.output;
+  EXPECT_NE(checked.output.find("warning: key 'materials.soil.density' = 2"), std::string::npos)
+      << checked.output;
+
+  const fs::path out = scratch("implausible-run");
+  const Result ran = run("run -q --overwrite " + path.string() + " -o " + out.string());
+  EXPECT_EQ(ran.status, 0) << ran.output;
+  EXPECT_NE(ran.output.find("warning: key 'materials.soil.young_modulus'"), std::string::npos)
+      << ran.output;
+  const std::string log = read_whole_file(out / "run.log");
+  EXPECT_NE(log.find("WARNING " + path.string() + ":9:"), std::string::npos) << log;
+  const std::string summary = read_whole_file(out / "summary.json");
+  const std::size_t warnings = summary.find("\"warnings\": [");
+  ASSERT_NE(warnings, std::string::npos) << summary;
+  EXPECT_NE(summary.find("materials.soil.young_modulus", warnings), std::string::npos) << summary;
+}
+
+// The bundled cases are what users copy: none of them may give a plausibility warning. The sizes
+// L and XL of BAR-WAVE-2D (1.6e5 and 1e6 nodes, 0.2 and 1.2 GB to check) are left out: they are
+// sizes S and M at finer spacings, with the same materials and loads, and a smaller time step.
+TEST(CommandLine, EveryBundledCaseChecksWithoutAWarning) {
+  int checked = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(RKTSPH_SOURCE_DIR) / "cases")) {
+    const std::string name = entry.path().filename().string();
+    if (name == "bar-wave-2d-l" || name == "bar-wave-2d-xl") continue;
+    if (!fs::exists(entry.path() / "case.yaml")) continue;
+    const Result result = run("check --threads 1 " + (entry.path() / "case.yaml").string());
+    EXPECT_EQ(result.status, 0) << name << ": " << result.output;
+    EXPECT_EQ(result.output.find("warning"), std::string::npos) << name << ": " << result.output;
+    ++checked;
+  }
+  EXPECT_GE(checked, 20);
 }
 
 // Cases run side by side (--jobs) give the same lines, in the order asked, as one after the

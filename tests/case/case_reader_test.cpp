@@ -815,6 +815,28 @@ TEST(CaseReader, SelfIntersectingPolygonIsRefusedNamingTheCrossingEdges) {
       << error.what();
 }
 
+// A symmetric bow-tie has zero signed area (its two loops cancel), but what is wrong with it is
+// the crossing, and that is what the user must be told.
+TEST(CaseReader, ABowTiePolygonIsCalledSelfIntersectingNotZeroArea) {
+  const std::string base = read_fixture("rich2d.yaml");
+  const std::string text =
+      replace_once(base, "polygon: [[0, 0], [20, 0], [20, 10], [10, 10], [10, 15], [0, 15]]",
+                   "polygon: [[0, 0], [20, 10], [20, 0], [0, 10]]");
+  const InputError error = read_error(text);
+  EXPECT_EQ(error.key(), "geometry.shapes.0.polygon");
+  EXPECT_NE(error.problem().find("intersects itself"), std::string::npos) << error.what();
+  EXPECT_EQ(error.problem().find("zero area"), std::string::npos) << error.what();
+}
+
+// Vertices all on one line do not cross; they still have zero area, and are named so.
+TEST(CaseReader, APolygonOnOneLineHasZeroArea) {
+  const std::string base = read_fixture("rich2d.yaml");
+  const std::string text = replace_once(base, "zone: {polygon: [[0, 0], [1, 0], [0, 1]]}",
+                                        "zone: {polygon: [[0, 0], [1, 1], [3, 3]]}");
+  const InputError error = read_error(text);
+  EXPECT_NE(error.problem().find("zero area"), std::string::npos) << error.what();
+}
+
 TEST(CaseReader, PolygonGroupThatFoldsBackOnItselfIsRefused) {
   const std::string base = read_fixture("rich2d.yaml");
   // Edges 0 and 1 run along one line and overlap: zero width there, non-zero area elsewhere.

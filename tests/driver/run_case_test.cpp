@@ -83,8 +83,11 @@ TEST_F(RunCaseTest, AnInterruptedRunEndsOnAWholeStepAndRecordsIt) {
   EXPECT_EQ(outcome.steps, 7);
   EXPECT_NE(summary().find("\"status\": \"interrupted\""), std::string::npos) << summary();
   EXPECT_NE(summary().find("test stop"), std::string::npos) << summary();
-  EXPECT_NE(last_log_line().find("ERROR interrupted: interrupted at step 7"), std::string::npos)
+  // A stop the user asked for is recorded, but it is not an error of the run.
+  EXPECT_NE(last_log_line().find("INFO interrupted: interrupted at step 7"), std::string::npos)
       << last_log_line();
+  EXPECT_EQ(read_whole_file(directory_ / "run.log").find("ERROR"), std::string::npos)
+      << read_whole_file(directory_ / "run.log");
   // The probes and the last field file reach the step the run stopped at.
   const std::string pvd = read_whole_file(directory_ / "series.pvd");
   const double stopped_at = last_probe_time(directory_ / "probes.csv");
@@ -154,6 +157,22 @@ TEST_F(RunCaseTest, AnInputErrorAtRunStartLeavesASummaryAndALogLine) {
   EXPECT_NE(summary().find("velocity_q"), std::string::npos) << summary();
   EXPECT_NE(last_log_line().find("ERROR failed:"), std::string::npos) << last_log_line();
   EXPECT_NE(last_log_line().find("velocity_q"), std::string::npos) << last_log_line();
+}
+
+// The record of a case mistake must not stand in the way of the corrected case: the rerun into
+// the same folder needs no --overwrite, since there are no results to protect.
+TEST_F(RunCaseTest, TheRecordOfAnInputErrorDoesNotBlockTheCorrectedRun) {
+  CaseDescription description = bar();
+  description.probes.front().fields = {"velocity_q"};
+  RunOptions options;
+  options.quiet = true;
+  EXPECT_THROW(run_case(description, directory_, options), InputError);
+  ASSERT_TRUE(fs::exists(directory_ / "summary.json"));
+  const RunOutcome outcome = run_case(bar(), directory_, options);
+  EXPECT_EQ(outcome.status, RunStatus::Completed) << outcome.message;
+  EXPECT_NE(summary().find("\"status\": \"completed\""), std::string::npos) << summary();
+  // Results are still protected: a third run without --overwrite is refused.
+  EXPECT_THROW(run_case(bar(), directory_, options), InputError);
 }
 
 TEST_F(RunCaseTest, ASetupErrorAfterTheFolderExistsLeavesASummaryNamingThePath) {

@@ -100,6 +100,28 @@ TEST(NodeSets, VertexOffTheLatticeIsAnInputError) {
   }
 }
 
+// Every vertex off the lattice is named in one report, not only the first one found.
+TEST(NodeSets, EveryVertexOffTheLatticeIsReported) {
+  GeometrySpec geometry;
+  geometry.spacing = 0.3;
+  geometry.shapes = {rectangle(0.0, 0.0, 1.0, 0.9, "soil"), rectangle(0.0, 0.0, 0.6, 1.1, "soil")};
+  geometry.shapes[0].where = {"case.yaml", 7, 5};
+  geometry.shapes[1].where = {"case.yaml", 9, 5};
+  try {
+    build_node_sets(geometry, 2, {"soil"});
+    FAIL() << "expected an InputError";
+  } catch (const InputError& error) {
+    const std::vector<InputError> errors = error.errors();
+    ASSERT_EQ(errors.size(), 2u) << error.what();
+    EXPECT_EQ(errors[0].key(), "geometry.shapes.0");
+    EXPECT_EQ(errors[0].value(), "1");
+    EXPECT_NE(errors[0].problem().find("x of vertex 1"), std::string::npos) << error.what();
+    EXPECT_EQ(errors[1].key(), "geometry.shapes.1");
+    EXPECT_EQ(errors[1].value(), "1.1");
+    EXPECT_NE(errors[1].problem().find("y of vertex 1"), std::string::npos) << error.what();
+  }
+}
+
 TEST(NodeSets, ShapeThinnerThanOneSpacingIsAnInputError) {
   GeometrySpec geometry;
   geometry.spacing = 1.0;

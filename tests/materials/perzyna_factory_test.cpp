@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <map>
 
 #include <string>
 
@@ -146,6 +147,50 @@ TEST(PerzynaFactory, UnknownKeyIsRejected) {
   const InputError error = error_of(block);
   EXPECT_EQ(error.key(), "materials.clay.hardening_modulus");
   EXPECT_EQ(error.location().line, 32);
+}
+
+// A new user's block often has several mistakes; one run must list them all, as the rest of the
+// case does, rather than one per attempt.
+TEST(PerzynaFactory, EveryMistakeOfABlockIsReportedAtOnce) {
+  ParameterBlock block = von_mises_block();
+  block.values.erase("fluidity");
+  block.values["exponent"] = {0.0, at_line(17)};
+  block.values["poisson_ratio"] = {0.7, at_line(14)};
+  const std::vector<InputError> errors = error_of(block).errors();
+  ASSERT_EQ(errors.size(), 3u) << error_of(block).what();
+  EXPECT_EQ(errors[0].key(), "materials.soil.fluidity");  // at the block's line, 10
+  EXPECT_EQ(errors[1].key(), "materials.soil.poisson_ratio");
+  EXPECT_EQ(errors[2].key(), "materials.soil.exponent");
+}
+
+TEST(PerzynaFactory, TheMistakesOfEveryBlockAreReportedTogether) {
+  std::map<std::string, ParameterBlock> blocks;
+  blocks["clay"] = cam_clay_block();
+  blocks["clay"].values["friction_angle"] = {90.0, at_line(25)};
+  blocks["soil"] = von_mises_block();
+  blocks["soil"].values["fluidity"] = {-1.0, at_line(16)};
+  try {
+    create_materials(blocks);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& error) {
+    const std::vector<InputError> errors = error.errors();
+    ASSERT_EQ(errors.size(), 2u) << error.what();
+    EXPECT_EQ(errors[0].key(), "materials.soil.fluidity");  // line 16, before line 25
+    EXPECT_EQ(errors[1].key(), "materials.clay.friction_angle");
+  }
+}
+
+// "yeild_stress" is a typing slip for a known key: say which, both where the slip is written and
+// where the key it was meant for is missing.
+TEST(PerzynaFactory, AMisspeltKeyGetsASuggestion) {
+  ParameterBlock block = von_mises_block();
+  block.values.erase("yield_stress");
+  block.values["yeild_stress"] = {50e3, at_line(15)};
+  const InputError error = error_of(block);
+  const std::string text = error.what();
+  EXPECT_NE(text.find("materials.soil.yeild_stress"), std::string::npos) << text;
+  EXPECT_NE(text.find("did you mean 'yield_stress'?"), std::string::npos) << text;
+  EXPECT_NE(text.find("'yeild_stress' is written"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "rktsph/case/case_reader.hpp"
+#include "rktsph/case/plausibility.hpp"
 #include "rktsph/core/build_info.hpp"
 #include "rktsph/output/atomic_file.hpp"
 #include "rktsph/output/checkpoint_writer.hpp"
@@ -20,7 +21,9 @@ namespace rktsph {
 namespace {
 
 void log_folder(RunLog& log, const OutputFolder& folder) {
-  if (folder.removed_results() > 0)
+  if (folder.replaced_setup_record())
+    log.info("replaced the record of an earlier run that failed before its first field file");
+  else if (folder.removed_results() > 0)
     log.info(fmt::format("--overwrite: removed {} result files of an earlier run",
                          folder.removed_results()));
   if (folder.removed_temporaries() > 0)
@@ -33,6 +36,8 @@ void log_end(RunLog& log, const RunOutcome& outcome, double simulated_time) {
   if (outcome.status == RunStatus::Completed)
     log.info(fmt::format("completed {} steps to t = {:.6g} s in {:.3f} s wall", outcome.steps,
                          simulated_time, outcome.wall_seconds));
+  else if (outcome.status == RunStatus::Interrupted)  // asked for by the user: no error
+    log.info(fmt::format("{}: {}", run_status_name(outcome.status), outcome.message));
   else
     log.error(fmt::format("{}: {}", run_status_name(outcome.status), outcome.message));
 }
@@ -65,6 +70,7 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
   std::unique_ptr<Simulation> simulation;
   std::unique_ptr<FieldSeriesWriter> series;
   std::unique_ptr<ProbeRecorder> probes;
+  std::vector<std::string> warnings;
   try {
     write_file_atomically(directory / "case.yaml", resolved_case);
     simulation = std::make_unique<Simulation>(description, options.limits);
@@ -74,6 +80,11 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
                     simulation->nodes().sph_nodes.size(), simulation->nodes().stress_points.size(),
                     simulation->step().operators().boundary_nodes.size(), simulation->time_step(),
                     simulation->total_steps(), omp_get_max_threads()));
+    warnings = warning_lines(plausibility_warnings(description, simulation->time_step()));
+    for (const std::string& warning : warnings) {
+      log.warning(warning);
+      if (options.progress_stream) *options.progress_stream << "rktsph: " << warning << "\n";
+    }
     series = std::make_unique<FieldSeriesWriter>(*simulation, directory);
     probes = std::make_unique<ProbeRecorder>(*simulation, directory / "probes.csv");
   } catch (const std::exception& error) {
@@ -87,7 +98,7 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
   }
 
   EnergyBudget energy;
-  SummaryWriter summary(directory / "summary.json", &energy);
+  SummaryWriter summary(directory / "summary.json", &energy, warnings);
   simulation->add_observer(*series);
   simulation->add_observer(*probes);
   simulation->add_observer(energy);  // before the summary, which reports its totals
@@ -133,6 +144,7 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
   outcome.directory = directory;
   outcome.steps = simulation->state().step;
   outcome.wall_seconds = simulation->wall_seconds();
+  outcome.warnings = std::move(warnings);
   log_end(log, outcome, simulation->state().time);
   if (inspect) inspect(*simulation);
   return outcome;

@@ -38,6 +38,8 @@ struct RunOutcome {
   std::filesystem::path directory;
   long steps = 0;
   double wall_seconds = 0.0;
+  /// The case's plausibility warnings (also in run.log, summary.json and on the progress stream).
+  std::vector<std::string> warnings;
 };
 
 /// Takes the output folder (see OutputFolder: lock, stale temporaries, earlier results), then

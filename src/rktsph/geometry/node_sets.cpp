@@ -49,19 +49,26 @@ Box bounding_box(const GeometrySpec& geometry, int dimension) {
 
 void check_vertices_on_lattice(const GeometrySpec& geometry, int dimension, const Vec3& origin) {
   const double dx = geometry.spacing;
-  for (const ShapeSpec& shape : geometry.shapes)
-    for (const Vec3& vertex : shape.vertices)
+  // Every coordinate off the lattice at once: moving one vertex onto it often moves the origin,
+  // and a user fixing them one run at a time would chase them.
+  std::vector<InputError> off_lattice;
+  for (std::size_t s = 0; s < geometry.shapes.size(); ++s) {
+    const ShapeSpec& shape = geometry.shapes[s];
+    for (std::size_t v = 0; v < shape.vertices.size(); ++v)
       for (int a = 0; a < dimension; ++a) {
-        const double cells = (vertex[a] - origin[a]) / dx;
-        if (std::abs(cells - std::round(cells)) > kLatticeTolerance)
-          throw InputError(
-              shape.where, "geometry.shapes", fmt::format("{}", vertex[a]),
-              fmt::format("shape vertex coordinate is not on the lattice of spacing {} "
-                          "starting at {} (it is {:.6f} spacings from it)",
-                          dx, origin[a], cells),
-              "coordinates that differ from the smallest coordinate of all shapes by "
-              "a whole number of spacings");
+        const double cells = (shape.vertices[v][a] - origin[a]) / dx;
+        if (std::abs(cells - std::round(cells)) <= kLatticeTolerance) continue;
+        off_lattice.emplace_back(
+            shape.where, fmt::format("geometry.shapes.{}", s),
+            fmt::format("{}", shape.vertices[v][a]),
+            fmt::format("{} of vertex {} is not on the lattice of spacing {} starting at {} (it "
+                        "is {:.6f} spacings from it)",
+                        axis_letter(a), v, dx, origin[a], cells),
+            "coordinates that differ from the smallest coordinate of all shapes by a whole "
+            "number of spacings");
       }
+  }
+  if (!off_lattice.empty()) throw InputError::combine(std::move(off_lattice));
   // A segment or rectangle thinner than a spacing passes the test above (its vertices round to
   // one lattice line) but has no cell, so nothing would move its nodes.
   for (const ShapeSpec& shape : geometry.shapes) {

@@ -46,9 +46,32 @@ std::unique_ptr<Material> create_material(const ParameterBlock& block) {
     throw InputError(model->second.second, block.path + ".model", model->second.first,
                      "unknown material model", allowed);
   ParameterReader reader(block);
-  std::unique_ptr<Material> material = creator->second(reader);
+  std::vector<InputError> errors;
+  std::unique_ptr<Material> material;
+  try {
+    material = creator->second(reader);
+  } catch (const InputError& error) {
+    errors.push_back(error);  // a check across keys, made on the values read so far
+  }
   reader.reject_unknown_keys();
+  errors.insert(errors.begin(), reader.errors().begin(), reader.errors().end());
+  if (!errors.empty()) throw InputError::combine(std::move(errors));
   return material;
+}
+
+std::vector<std::unique_ptr<Material>> create_materials(
+    const std::map<std::string, ParameterBlock>& blocks) {
+  std::vector<std::unique_ptr<Material>> materials;
+  std::vector<InputError> errors;
+  for (const auto& entry : blocks) {
+    try {
+      materials.push_back(create_material(entry.second));
+    } catch (const InputError& error) {
+      errors.push_back(error);
+    }
+  }
+  if (!errors.empty()) throw InputError::combine(std::move(errors));
+  return materials;
 }
 
 }  // namespace rktsph

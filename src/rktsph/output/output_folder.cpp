@@ -161,9 +161,24 @@ void OutputFolder::remove_stale_temporaries() {
   }
 }
 
+// What a run leaves when its case or setup failed before the first field file: the resolved
+// case, the log and the summary saying why. There is nothing computed in them to protect, and
+// asking for --overwrite would only stand in the way of the corrected case.
+bool only_a_setup_record(const std::vector<fs::path>& files) {
+  return std::all_of(files.begin(), files.end(), [](const fs::path& file) {
+    const std::string name = file.filename().string();
+    return file.parent_path().filename() != "fields" &&
+           (name == "summary.json" || name == "case.yaml" || name == "run.log");
+  });
+}
+
 void OutputFolder::handle_existing_results(ExistingResults existing) {
   const std::vector<fs::path> files = run_result_files(directory_);
   if (files.empty() || existing == ExistingResults::Continue) return;
+  if (existing == ExistingResults::Refuse && only_a_setup_record(files)) {
+    replaced_setup_record_ = true;
+    existing = ExistingResults::Overwrite;
+  }
   if (existing == ExistingResults::Refuse)
     throw InputError({}, "", "",
                      fmt::format("the output folder '{}' holds the results of an earlier run ({})",

@@ -12,7 +12,8 @@ namespace rktsph {
 /// What to do when the folder already holds rktsph results (summary.json, run.log, field
 /// files, ...).
 enum class ExistingResults {
-  Refuse,     ///< InputError: the user asks for --overwrite or another folder
+  Refuse,     ///< InputError: the user asks for --overwrite or another folder (but the record of
+              ///< a run that failed before its first field file is replaced)
   Overwrite,  ///< remove rktsph's own result files first (never other files)
   Continue,   ///< keep them (a run that continues the folder's run, e.g. a restart)
 };
@@ -37,6 +38,9 @@ class OutputFolder {
   std::size_t removed_temporaries() const { return removed_temporaries_; }
   /// Result files of an earlier run removed (with ExistingResults::Overwrite).
   std::size_t removed_results() const { return removed_results_; }
+  /// True if the folder held only the record of a run whose case or setup failed (summary.json,
+  /// case.yaml, run.log, no field file), which was replaced without --overwrite.
+  bool replaced_setup_record() const { return replaced_setup_record_; }
 
  private:
   void remove_stale_temporaries();
@@ -46,6 +50,7 @@ class OutputFolder {
   int lock_descriptor_ = -1;
   std::size_t removed_temporaries_ = 0;
   std::size_t removed_results_ = 0;
+  bool replaced_setup_record_ = false;
 };
 
 /// The files in `directory` that rktsph writes for a run (summary.json, case.yaml, series.pvd,

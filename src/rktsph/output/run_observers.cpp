@@ -131,7 +131,31 @@ std::vector<std::string> output_field_selection(const Simulation& simulation) {
                        allowed);
     }
   }
-  return output.fields.empty() ? available : output.fields;
+  if (output.fields.empty()) return available;
+  // The points of a field file are X + u: with u beside them, X (and a drawing at X + M u) can
+  // always be recovered.
+  std::vector<std::string> selection = output.fields;
+  if (std::find(selection.begin(), selection.end(), "displacement") == selection.end())
+    selection.insert(selection.begin(), "displacement");
+  return selection;
+}
+
+// The current positions X + u of the SPH nodes, one array per axis of the dimension. Every model
+// writes these, so that a field file's points mean one thing: a small-deformation model keeps its
+// configuration at X, a large-deformation one moves it to X + u (docs/theory.md §9.1).
+std::vector<std::vector<double>> current_positions(const Simulation& simulation,
+                                                   const State& state) {
+  const PointCloud& reference = simulation.nodes().sph_nodes;
+  const FieldArray& displacement = state.displacement;
+  std::vector<std::vector<double>> positions(static_cast<std::size_t>(reference.dimension));
+  for (int a = 0; a < reference.dimension; ++a) {
+    const auto axis = static_cast<std::size_t>(a);
+    const double* u = displacement.field(a);
+    positions[axis].resize(reference.size());
+    for (std::size_t i = 0; i < reference.size(); ++i)
+      positions[axis][i] = reference.position[axis][i] + u[i];
+  }
+  return positions;
 }
 
 }  // namespace
@@ -165,8 +189,7 @@ FieldSeriesWriter::FieldSeriesWriter(const Simulation& simulation, std::filesyst
                                (directory_ / "fields").string(), error.message()));
 }
 
-void FieldSeriesWriter::write(const Simulation& simulation) {
-  const State& state = simulation.state();
+void FieldSeriesWriter::write(const Simulation& simulation, const State& state) {
   const PhysicsModel& model = simulation.model();
   const std::size_t n = simulation.nodes().sph_nodes.size();
   const int d = model.dimension();
@@ -240,25 +263,38 @@ void FieldSeriesWriter::write(const Simulation& simulation) {
     }
   }
   const std::string file = fmt::format("fields/fields_{:06d}.vtu", collection_.entries().size());
-  write_vtu(directory_ / file, state.configuration.sph_nodes, fields);  // current positions
+  const std::vector<std::vector<double>> positions = current_positions(simulation, state);
+  PointPositions points;
+  points.dimension = static_cast<int>(positions.size());
+  points.count = n;
+  for (std::size_t a = 0; a < positions.size(); ++a)
+    points.coordinates[a] = positions[a].data();
+  write_vtu(directory_ / file, points, fields);
   collection_.add(state.time, file);
   last_written_time_ = state.time;
 }
 
 void FieldSeriesWriter::on_start(const Simulation& simulation) {
-  write(simulation);
+  write(simulation, simulation.state());
 }
 
 void FieldSeriesWriter::after_step(const Simulation& simulation) {
-  if (schedule_.due(simulation.state().time, simulation.time_step())) write(simulation);
+  if (schedule_.due(simulation.state().time, simulation.time_step()))
+    write(simulation, simulation.state());
 }
 
 void FieldSeriesWriter::on_finish(const Simulation& simulation, RunStatus status,
                                   const std::string&) {
-  // After a divergence or a failure the state may be bad or the disk full: keep the last good
-  // files. An interrupted run ends on a whole step, which is worth writing.
+  // A run that diverged or failed inside a step ends with the state before that step, its last
+  // good one, so that the last file shows where things stood, not an output of long before. An
+  // interrupted run ends on a whole step, which is worth writing. Any other failure (a disk that
+  // is full) keeps the files as they are.
+  if (const State* before = simulation.state_before_stop()) {
+    if (before->time != last_written_time_) write(simulation, *before);
+    return;
+  }
   if (status != RunStatus::Completed && status != RunStatus::Interrupted) return;
-  if (simulation.state().time != last_written_time_) write(simulation);
+  if (simulation.state().time != last_written_time_) write(simulation, simulation.state());
 }
 
 void FieldSeriesWriter::on_resume(const Simulation&) {
@@ -442,6 +478,10 @@ void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,
   summary.set("boundary_nodes", simulation.step().operators().boundary_nodes.size());
   summary.set("threads", omp_get_max_threads());
   set_program(summary);
+  JsonValue warnings = JsonValue::array();
+  for (const std::string& warning : warnings_)
+    warnings.push_back(warning);
+  summary.set("warnings", std::move(warnings));
   const StepTimeSplit split = simulation.step().time_split();
   JsonValue step_time = JsonValue::object();
   step_time.set("cell_lists_seconds", split.cell_lists);

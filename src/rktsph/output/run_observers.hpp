@@ -58,7 +58,8 @@ class FieldSeriesWriter final : public Observer, public Checkpointed {
   std::size_t files_written() const { return collection_.entries().size(); }
 
  private:
-  void write(const Simulation& simulation);
+  /// Writes `state` (the simulation's, or its last good one) as the next field file.
+  void write(const Simulation& simulation, const State& state);
   std::filesystem::path directory_;
   PvdCollection collection_;
   std::vector<std::string> selection_;
@@ -113,14 +114,17 @@ class ProbeRecorder final : public Observer, public Checkpointed {
 /// with the energy budget of `energy` when given (its totals at the last step it observed).
 class SummaryWriter final : public Observer {
  public:
-  explicit SummaryWriter(std::filesystem::path path, const EnergyBudget* energy = nullptr)
-      : path_(std::move(path)), energy_(energy) {}
+  /// `warnings`: the case's plausibility warnings, listed as `warnings` (empty: none).
+  explicit SummaryWriter(std::filesystem::path path, const EnergyBudget* energy = nullptr,
+                         std::vector<std::string> warnings = {})
+      : path_(std::move(path)), energy_(energy), warnings_(std::move(warnings)) {}
   void on_finish(const Simulation& simulation, RunStatus status,
                  const std::string& message) override;
 
  private:
   std::filesystem::path path_;
   const EnergyBudget* energy_;
+  std::vector<std::string> warnings_;
 };
 
 /// summary.json for a run that failed before its loop started (a setup or input error found after

@@ -270,12 +270,10 @@ double Assembly::estimated_memory() const {
 Assembly::Assembly(CaseDescription description, SimulationLimits limits)
     : description_(std::move(description)) {
   node_estimate_ = checked_node_estimate(description_, limits);
-  std::vector<std::unique_ptr<Material>> materials;
+  std::vector<std::unique_ptr<Material>> materials = create_materials(description_.materials);
   std::vector<std::string> material_names;
-  for (const auto& [name, block] : description_.materials) {
-    materials.push_back(create_material(block));
-    material_names.push_back(name);
-  }
+  for (const auto& entry : description_.materials)
+    material_names.push_back(entry.first);
   // The cells the case asks for (docs/theory.md §3.1, §3.6): both builders fill the same NodeSets.
   nodes_ = description_.geometry.cells == CellLayout::Triangles
                ? build_triangle_node_sets(description_.geometry, material_names)

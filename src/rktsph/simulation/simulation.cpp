@@ -116,12 +116,16 @@ RunStatus Simulation::run() {
     }
     const double dt = step_length(s);
     if (!(dt > 0.0)) break;  // the round-off of t += dt already reached time.end
+    // Kept for the last output of a run that stops inside the step (into the same storage every
+    // step, so without allocation after the first).
+    before_step_ = state();
     try {
       step().advance(state(), dt);
     } catch (const std::exception& error) {  // e.g. a pressure solve that does not converge
       message_ = fmt::format("failed at step {} (t = {:.6g} s): {}", state().step + 1,
                              state().time + dt, error.what());
       status = RunStatus::Failed;
+      stopped_in_step_ = true;
       break;
     }
     const std::string problem = find_divergence(state());
@@ -129,6 +133,7 @@ RunStatus Simulation::run() {
       message_ = fmt::format("diverged at step {} (t = {:.6g} s): {}", state().step, state().time,
                              problem);
       status = RunStatus::Diverged;
+      stopped_in_step_ = true;
       break;
     }
     wall_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

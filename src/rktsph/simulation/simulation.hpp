@@ -94,6 +94,9 @@ class Simulation final : public Checkpointed {
   double wall_seconds() const { return wall_seconds_; }
   /// True when an observer ended the run early (its reason is in message()).
   bool stopped_early() const { return stopped_early_; }
+  /// The last good state of a run that diverged or failed inside a step: the state before that
+  /// step, for the output to show where things stood; null for a run that did not stop so.
+  const State* state_before_stop() const { return stopped_in_step_ ? &before_step_ : nullptr; }
 
   /// The state and every other value the next step depends on (the projection's warm start);
   /// what the case determines (operators, the strain hourglass stiffness's reference stresses of
@@ -122,6 +125,8 @@ class Simulation final : public Checkpointed {
   StopCheck stop_check_;
   bool resumed_ = false;
   bool stopped_early_ = false;
+  State before_step_;  ///< the state before the current step (state_before_stop)
+  bool stopped_in_step_ = false;
 };
 
 }  // namespace rktsph

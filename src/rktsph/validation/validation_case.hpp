@@ -78,9 +78,9 @@ struct FieldPicture {
   int component = -1;         ///< index in the VTK tuple (stress: 0 = xx, 4 = yy, 1 = xy);
                               ///< -1: the value of a scalar, the magnitude of a vector/tensor
   double time = -1;           ///< the output nearest this time [s]; negative: the last one
-  double magnification = 0;   ///< positions drawn at x + magnification * displacement; a
-                              ///< large-deformation run writes its current positions, drawn
-                              ///< at true scale with 0
+  double magnification = 0;   ///< positions drawn at X + magnification * u (X reference, u
+                              ///< displacement) for every model: 1 draws the current
+                              ///< positions, a large-deformation run's at true scale
   std::string caption;
 };
 

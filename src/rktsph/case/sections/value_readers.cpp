@@ -41,6 +41,13 @@ int orientation(const Vec3& a, const Vec3& b, const Vec3& c) {
   return (cross > 0.0) - (cross < 0.0);
 }
 
+/// True if every vertex lies on the line through the first two (which differ: no vertex repeats).
+bool all_on_one_line(const std::vector<Vec3>& vertices) {
+  for (std::size_t k = 2; k < vertices.size(); ++k)
+    if (orientation(vertices[0], vertices[1], vertices[k]) != 0) return false;
+  return true;
+}
+
 /// For p collinear with segment [a, b]: p lies within its bounding box, i.e. on the segment.
 bool on_segment(const Vec3& a, const Vec3& b, const Vec3& p) {
   return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) &&
@@ -154,10 +161,14 @@ std::vector<Vec3> read_polygon(const YamlNode& node, int dimension) {
   for (const YamlNode& vertex : items)
     vertices.push_back(read_vector(vertex, dimension));
   refuse_repeated_vertex(node, vertices);
-  if (twice_signed_area(vertices) == 0.0) {
+  const auto zero_area = [&] {
     fail_at(node, "the polygon has zero area", "at least 3 vertices that are not all on one line");
-  }
+  };
+  if (all_on_one_line(vertices)) zero_area();
+  // Before the area: a symmetric bow-tie's two loops cancel to zero area, and the crossing is
+  // what the user must be told about.
   refuse_crossing_edges(node, vertices);
+  if (twice_signed_area(vertices) == 0.0) zero_area();
   return vertices;
 }
 

@@ -309,10 +309,10 @@ std::vector<CheckResult> validate_ld_bar2d_viscoplastic(const ValidationContext&
     }
     context.report->add_figure(std::move(histories));
     context.report->add_figure(std::move(profiles));
-    context.report->add_picture({"eps_vp_end", run.string(), "eps_vp", -1, -1.0, 0.0,
+    context.report->add_picture({"eps_vp_end", run.string(), "eps_vp", -1, -1.0, 1.0,
                                  "Equivalent viscoplastic strain at the end: largest at the "
                                  "loaded end, decaying towards the front"});
-    context.report->add_picture({"stress_end", run.string(), "stress", 0, -1.0, 0.0,
+    context.report->add_picture({"stress_end", run.string(), "stress", 0, -1.0, 1.0,
                                  "sigma_xx at the end: the front near x = 0.2 m"});
   }
   return {

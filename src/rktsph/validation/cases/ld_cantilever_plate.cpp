@@ -254,7 +254,7 @@ std::vector<CheckResult> validate_ld_cantilever_plate(const ValidationContext& c
     const double deepest =
         finest.swing.crossings.empty() ? 0.25 * period : finest.swing.crossings.front();
     context.report->add_picture(
-        {"stress_xx_swing", finest.run.string(), "stress", 0, deepest, 0.0,
+        {"stress_xx_swing", finest.run.string(), "stress", 0, deepest, 1.0,
          fmt::format("sigma_xx on the plate at its first largest deflection (t = {:.3f} s), H/{}",
                      deepest, finest.cells)});
   }

@@ -88,7 +88,7 @@ std::vector<CheckResult> validate_ld_rotation_objectivity(const ValidationContex
                                 "time [s]",
                                 "|sigma - R sigma_0 R^T| / |sigma_0|",
                                 {{"large deformation", times, errors, "line"}}});
-    context.report->add_picture({"stress_xx_end", run.string(), "stress", 0, -1.0, 0.0,
+    context.report->add_picture({"stress_xx_end", run.string(), "stress", 0, -1.0, 1.0,
                                  "sigma_xx after the quarter turn: sigma_yy of the start"});
   }
   return {check_at_most("stress_rotation_error", largest, 0.0, 0.01, "fraction")};
@@ -160,7 +160,7 @@ std::vector<CheckResult> validate_ld_spinning_square(const ValidationContext& co
                                 "time [s]",
                                 "[J/m]",
                                 {{"SPH", times, kinetic, "line"}}});
-    context.report->add_picture({"stress_end", run.string(), "stress", -1, -1.0, 0.0,
+    context.report->add_picture({"stress_end", run.string(), "stress", -1, -1.0, 1.0,
                                  "|sigma| on the spinning square at the end"});
   }
   return {check_at_most("angular_momentum_error", momentum_error, 0.0, 0.01, "fraction"),

@@ -92,7 +92,7 @@ std::vector<CheckResult> validate_ld_slope_cohesive(const ValidationContext& con
          {std::move(crest),
           sample_curve("0.2 H", 0.0, failure.end, 2, [](double) { return 0.2; })}});
     context.report->add_picture({"eps_vp_post_failure", failure.run.directory.string(), "eps_vp",
-                                 -1, -1.0, 0.0,
+                                 -1, -1.0, 1.0,
                                  fmt::format("Equivalent viscoplastic strain at the end of the "
                                              "run at N = {:g}, on the deformed configuration "
                                              "(true scale).",

@@ -180,8 +180,8 @@ void report(ValidationReport& report, const std::vector<Collapse>& runs, const B
       sample_curve("minimum run-out at rest", 0.0, last, 2, [&](double) { return runout; }));
   report.add_figure(std::move(energy));
   report.add_figure(std::move(fronts));
-  // The field output is on the current configuration: drawn at true scale, no magnification.
-  report.add_picture({"eps_vp", finest.run.directory.string(), "eps_vp", -1, -1.0, 0.0,
+  // The field output is on the current configuration: drawn at true scale, X + u (magnification 1).
+  report.add_picture({"eps_vp", finest.run.directory.string(), "eps_vp", -1, -1.0, 1.0,
                       fmt::format("Equivalent viscoplastic strain on the deformed block, dx = "
                                   "{:g} m, at the last output of the run.",
                                   finest.spacing)});

@@ -124,7 +124,7 @@ void report_bearing(ValidationReport& report, const ValidationRun& run, double f
        "-sigma_yy [kPa]",
        {std::move(pressure), sample_curve("(2 + pi) c", 0.0, 0.5 * footing_width, 2,
                                           [&](double) { return 1e-3 * capacity; })}});
-  report.add_picture({"eps_vp", run.directory.string(), "eps_vp", -1, -1.0, 0.0,
+  report.add_picture({"eps_vp", run.directory.string(), "eps_vp", -1, -1.0, 1.0,
                       "Equivalent viscoplastic strain at the end of the push on the deformed "
                       "configuration (true scale): the Prandtl mechanism, with the heave beside "
                       "the footing."});

@@ -124,13 +124,13 @@ void report_vertical_cut(ValidationReport& report, const FootingRow& footing,
        "-sigma_yy [kPa]",
        {std::move(measured),
         sample_curve("2c", footing.left, footing.right, 2, [&](double) { return 1e-3 * limit; })}});
-  report.add_picture({"eps_vp", perfect.directory.string(), "eps_vp", -1, -1.0, 0.0,
+  report.add_picture({"eps_vp", perfect.directory.string(), "eps_vp", -1, -1.0, 1.0,
                       fmt::format("Equivalent viscoplastic strain at the end of the push on the "
                                   "deformed configuration (true scale), no hardening: the wedge "
                                   "from the inner footing edge slides out of the face (c = {:.1f} "
                                   "kPa).",
                                   1e-3 * cohesion)});
-  report.add_picture({"eps_vp_softening", softening.directory.string(), "eps_vp", -1, -1.0, 0.0,
+  report.add_picture({"eps_vp_softening", softening.directory.string(), "eps_vp", -1, -1.0, 1.0,
                       "Equivalent viscoplastic strain at the end of the push, softening run."});
 }
 
