@@ -13,8 +13,12 @@
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "../support/elastic_block.hpp"
 #include "../support/lattices.hpp"
@@ -59,6 +63,53 @@ TEST(HourglassStiffness, CellVectorsAndStiffnessOnTheLattice) {
     // k = (M + G)/12 (eq. 3.3).
     EXPECT_NEAR(control.stiffness[p], (kConstrained + kShear) / 12.0, 1e-6 * kConstrained);
   }
+}
+
+// The strength of each cell follows the flow around it (eq. 3.10): 1 away from flow, the
+// near-flow ratio within kFlowNeighbourhood rings of a cell that flows or has flowed, psi times
+// it in a flowing cell itself.
+TEST(HourglassStiffness, StrengthFollowsTheFlowAroundTheCell) {
+  Simulation simulation(block_with_controls(1.0, 0.0).description());
+  HourglassStiffness control = simulation.step().hourglass_stiffness();
+  ASSERT_TRUE(control.active());
+  // An elastic material keeps its strength next to flow.
+  for (double ratio : control.near_flow)
+    EXPECT_EQ(ratio, 1.0);
+  const double ratio = 0.05, psi = 0.4;
+  std::fill(control.near_flow.begin(), control.near_flow.end(), ratio);
+  const std::size_t cells = control.corners.size();
+  // The lattice's cells by their lower-left corner's position.
+  const auto& position = simulation.nodes().sph_nodes.position;
+  const auto lower_left = [&](std::size_t p) {
+    double x = 1e300, y = 1e300;
+    for (std::int32_t node : control.corners[p]) {
+      x = std::min(x, position[0][static_cast<std::size_t>(node)]);
+      y = std::min(y, position[1][static_cast<std::size_t>(node)]);
+    }
+    return std::array<double, 2>{x, y};
+  };
+  std::size_t centre = cells;
+  for (std::size_t p = 0; p < cells; ++p)
+    if (lower_left(p) == std::array<double, 2>{6.0, 2.0}) centre = p;
+  ASSERT_LT(centre, cells);
+  std::vector<std::uint8_t> near_node(control.inverse_mass.size(), 0);
+  std::vector<double> factor(cells, -1.0);
+  for (const std::uint8_t state : {std::uint8_t{1}, std::uint8_t{2}}) {  // flows, has flowed
+    std::vector<std::uint8_t> flowing(cells, 0);
+    flowing[centre] = state;
+    hourglass_factors(control, flowing, psi, near_node, factor);
+    for (std::size_t p = 0; p < cells; ++p) {
+      const auto corner = lower_left(p);
+      const bool near = std::abs(corner[0] - 6.0) <= kFlowNeighbourhood &&
+                        std::abs(corner[1] - 2.0) <= kFlowNeighbourhood;
+      const double expected = p == centre && state == 1 ? psi * ratio : near ? ratio : 1.0;
+      EXPECT_DOUBLE_EQ(factor[p], expected) << "cell at " << corner[0] << ", " << corner[1];
+    }
+  }
+  // No flow: every cell at full strength.
+  hourglass_factors(control, std::vector<std::uint8_t>(cells, 0), psi, near_node, factor);
+  for (double value : factor)
+    EXPECT_EQ(value, 1.0);
 }
 
 // The acceleration (eq. 3.4) of the hourglass forces k q of a displacement u (eq. 3.9 from rest).

@@ -72,6 +72,14 @@ class Material {
     return !is_elastic();
   }
 
+  /// True if a point with these internal variables has flowed at some time (its equivalent
+  /// viscoplastic strain is above 0): the cells' hourglass strength follows it (docs/theory.md
+  /// eq. 3.10). Elastic materials never have.
+  virtual bool has_flowed(std::span<const double> internal) const {
+    (void)internal;
+    return false;
+  }
+
   /// The largest mean stress p = tr(stress)/3 the material carries [Pa] (tension positive): a
   /// stress update that ends above it is returned onto it (docs/theory.md §1.7). +infinity: no
   /// cut-off.

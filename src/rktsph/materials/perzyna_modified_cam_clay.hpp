@@ -64,6 +64,9 @@ class PerzynaModifiedCamClay final : public Material {
   bool flows(const SymmetricTensor& stress, std::span<const double> internal) const override {
     return overstress(stress, internal) > 0.0;
   }
+  bool has_flowed(std::span<const double> internal) const override {
+    return internal[kEquivalentStrain] > 0.0;
+  }
   /// C1, C2, C3 of m (docs/theory.md eqs. 1.9–1.10, with the regular potential above). The theta
   /// terms, which vanish like sqrt(J2) on the hydrostatic axis, are dropped where the
   /// Lode angle is undefined (StressInvariants::lode_defined).

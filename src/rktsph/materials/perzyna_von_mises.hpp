@@ -58,6 +58,9 @@ class PerzynaVonMises final : public Material {
   bool flows(const SymmetricTensor& stress, std::span<const double> internal) const override {
     return overstress(stress, internal) > 0.0;
   }
+  bool has_flowed(std::span<const double> internal) const override {
+    return internal[kEquivalentStrain] > 0.0;
+  }
   /// g = F = q: C1 = 0, C2 = sqrt3, C3 = 0 (docs/theory.md §1.4).
   static FlowCoefficients flow_coefficients();
   /// m = dq/dstress = (3/2) s / q; zero at q = 0.

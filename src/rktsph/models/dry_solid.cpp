@@ -377,11 +377,8 @@ void DrySolid::flowing(std::span<const std::int32_t> material, const FieldArray&
     double kappa[kMaxInternal] = {};
     for (int c = 0; c < m.internal_count(); ++c)
       kappa[c] = internal(c, i);
-    flowing[i] =
-        m.flows(stress_tensor(values, i),
-                std::span<const double>(kappa, static_cast<std::size_t>(m.internal_count())))
-            ? 1
-            : 0;
+    const std::span<const double> state(kappa, static_cast<std::size_t>(m.internal_count()));
+    flowing[i] = m.flows(stress_tensor(values, i), state) ? 1 : m.has_flowed(state) ? 2 : 0;
   }
 }
 

@@ -134,7 +134,8 @@ class PhysicsModel {
                                         FieldArray& values) const = 0;
 
   /// flowing[i] = 1 where the material of point i is in viscoplastic flow at `values` and
-  /// `internal` (0 for elastic states and materials).
+  /// `internal`, 2 where it is not but has flowed before (Material::has_flowed), 0 elsewhere
+  /// (elastic materials).
   virtual void flowing(std::span<const std::int32_t> material, const FieldArray& values,
                        const FieldArray& internal, std::span<std::uint8_t> flowing) const {
     (void)material, (void)values, (void)internal;

@@ -31,7 +31,10 @@ struct HourglassStiffness {
   std::vector<std::array<std::int32_t, 4>> corners;  ///< counter-clockwise from the lower left
   std::vector<std::array<double, 4>> gamma;          ///< hourglass vector of each cell (3.2)
   std::vector<double> stiffness;                     ///< k of each cell [N/m per unit thickness]
-  std::vector<double> inverse_mass;                  ///< 1/(rho_n V_n) of each node [m/kg]
+  /// epsilon_vp / epsilon_el in cells of viscoplastic materials, 1 in elastic ones: the part of k
+  /// that acts next to viscoplastic flow (eq. 3.10)
+  std::vector<double> near_flow;
+  std::vector<double> inverse_mass;  ///< 1/(rho_n V_n) of each node [m/kg]
   /// The cells of node n are cell_of[k], corner corner_of[k] for k in [node_start[n],
   /// node_start[n+1]), so that the force on a node is a gather (parallel without atomics).
   std::vector<std::int32_t> node_start;
@@ -41,8 +44,9 @@ struct HourglassStiffness {
   bool active() const { return !stiffness.empty(); }
 };
 
-/// The fraction epsilon of the fully integrated element's hourglass stiffness in cells of elastic
-/// and of viscoplastic materials (docs/theory.md §3.4); both 0 = off.
+/// The fraction epsilon of the fully integrated element's hourglass stiffness (docs/theory.md
+/// §3.4, eq. 3.10): `elastic` in every cell away from viscoplastic flow, `viscoplastic` in cells of
+/// viscoplastic materials around flow, present or past (hourglass_factors); both 0 = off.
 struct HourglassStrength {
   double elastic = 0.0;
   double viscoplastic = 0.0;
@@ -53,9 +57,22 @@ struct HourglassStrength {
 HourglassStiffness build_hourglass_stiffness(const NodeSets& nodes, const PhysicsModel& model,
                                              HourglassStrength epsilon);
 
+/// Rings of cells around a cell that flows or has flowed that take the near-flow strength (eq.
+/// 3.10; measured in docs/theory.md §3.4: with none, the cells around a forming mechanism hold it
+/// and Taylor's stability number rises).
+inline constexpr int kFlowNeighbourhood = 2;
+
+/// factor_P of eq. 3.9 for every cell from its flow state (flowing: 1 in flow, 2 flowed before,
+/// 0 never), docs/theory.md eq. 3.10: plastic_fraction * near_flow_P in flowing cells, near_flow_P
+/// in the other cells within kFlowNeighbourhood rings of a cell that flows or has flowed (itself
+/// included), 1 elsewhere. near_node is scratch of one entry per node; nothing is allocated.
+void hourglass_factors(const HourglassStiffness& control, std::span<const std::uint8_t> flowing,
+                       double plastic_fraction, std::span<std::uint8_t> near_node,
+                       std::span<double> factor);
+
 /// force_out = force_in + interval * factor_P k_P gamma_P . v for every cell P: the generalised
 /// hourglass force k q advanced by the velocity `fields` (components velocity_field[a]) over
-/// `interval` (eq. 3.9); factor is 1 in elastic cells and the plastic fraction in flowing ones.
+/// `interval` (eq. 3.9), with factor from hourglass_factors (eq. 3.10).
 void advance_hourglass_force(const HourglassStiffness& control, const FieldArray& fields,
                              const std::array<int, 2>& velocity_field, double interval,
                              std::span<const double> factor, const FieldArray& force_in,

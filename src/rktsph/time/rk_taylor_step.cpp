@@ -99,6 +99,7 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
     hourglass_force_ = FieldArray(2, nv);
     hourglass_factor_.assign(nv, 1.0);
     point_flowing_.assign(nv, 0);
+    node_near_flow_.assign(hourglass_stiffness_.inverse_mass.size(), 0);
   }
   for (int a = 0; a < d; ++a)
     velocity_parities_.push_back(
@@ -298,9 +299,27 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
   model_.advance(nodes_.cells.materials(), rate_, state.time, 0.5 * dt, half_step_,
                  point_internal_);
   if (hourglass_stiffness_.active()) {
+    // The strength of each cell follows the flow, present or past, around it (docs/theory.md
+    // eq. 3.10): a cell flows where its stress point does at the half step, and has flowed where
+    // every corner node has (not one only: a drained loaded surface yields in its nodes alone).
+    // On a moving configuration every cell counts as having flowed, the rule before eq. 3.10:
+    // there the full strength held the cut of ld-slope-cohesive (N = 4.34 against 3.79, §3.4).
     model_.flowing(nodes_.cells.materials(), half_step_, point_internal_, point_flowing_);
+    const bool moving = configuration_->motion() != nullptr;
+    if (!moving)
+      model_.flowing(nodes_.node_material, state.fields, state.internal, node_near_flow_);
+    const auto& corners = hourglass_stiffness_.corners;
     for (std::size_t p = 0; p < point_flowing_.size(); ++p)
-      hourglass_factor_[p] = point_flowing_[p] ? options_.hourglass_plastic_fraction : 1.0;
+      if (point_flowing_[p] != 1)
+        point_flowing_[p] =
+            moving || std::all_of(corners[p].begin(), corners[p].end(),
+                                  [this](std::int32_t node) {
+                                    return node_near_flow_[static_cast<std::size_t>(node)] != 0;
+                                  })
+                ? 2
+                : 0;
+    hourglass_factors(hourglass_stiffness_, point_flowing_, options_.hourglass_plastic_fraction,
+                      node_near_flow_, hourglass_factor_);
   }
   if (viscosity_length_ > 0.0)
     model_.add_artificial_viscosity(nodes_.cells.materials(), point_gradient_, viscosity_length_,

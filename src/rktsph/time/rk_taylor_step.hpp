@@ -163,9 +163,10 @@ class RkTaylorStep {
   FieldArray boundary_rate_;
   FieldArray boundary_internal_;
   FieldArray node_gradient_;
-  FieldArray hourglass_force_;               // k q of every cell at t + dt/2 (eq. 3.9)
-  std::vector<double> hourglass_factor_;     // 1, or psi in flowing cells
-  std::vector<std::uint8_t> point_flowing_;  // of the stress points' half-step state
+  FieldArray hourglass_force_;                // k q of every cell at t + dt/2 (eq. 3.9)
+  std::vector<double> hourglass_factor_;      // of eq. 3.9, from the cells' flow (eq. 3.10)
+  std::vector<std::uint8_t> point_flowing_;   // cells: 1 flows, 2 has flowed, 0 never (3.10)
+  std::vector<std::uint8_t> node_near_flow_;  // nodes: flowed, then scratch of the factors
   std::vector<double> filter_values_;  // node-major copies for the round trip, then its residual
   std::vector<double> filter_points_;
   std::vector<double> filter_round_trip_;

@@ -26,6 +26,8 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_vpw_harmonic_column},
       {"vpw-strip-footing-elastic", "fast strip load on a nearly undrained elastic stratum (6.4.4)",
        &validate_vpw_strip_footing_elastic},
+      {"vpw-strip-footing-plastic", "held strip load on a saturated Von Mises clay, defaults (I28)",
+       &validate_vpw_strip_footing_plastic},
       {"vpw-localization", "shear band in a saturated softening sample (6.4.5)",
        &validate_vpw_localization},
       {"vpw-vertical-cut-footing", "footing on a saturated vertical cut, undrained limit (6.4.6)",

@@ -19,6 +19,7 @@ std::vector<CheckResult> validate_convergence(const ValidationContext& context);
 std::vector<CheckResult> validate_vpw_consolidation(const ValidationContext& context);
 std::vector<CheckResult> validate_vpw_harmonic_column(const ValidationContext& context);
 std::vector<CheckResult> validate_vpw_strip_footing_elastic(const ValidationContext& context);
+std::vector<CheckResult> validate_vpw_strip_footing_plastic(const ValidationContext& context);
 std::vector<CheckResult> validate_vpw_localization(const ValidationContext& context);
 std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationContext& context);
 std::vector<CheckResult> validate_strip_footing_elastic(const ValidationContext& context);

@@ -33,8 +33,9 @@ const KeyTable<NumericsSpec>& hourglass_keys() {
                     "Smoothing length of the filter over dx."),
       optional_number_key<N>(
           "stiffness", &N::hourglass_stiffness, kUnitInterval, "–",
-          fmt::format("with stress_update: mean_velocity {} in cells of elastic materials, {} in "
-                      "cells of viscoplastic ones; with half_step 0",
+          fmt::format("with stress_update: mean_velocity {} in every cell away from viscoplastic "
+                      "flow, {} in viscoplastic cells within two rings of flow, present or past "
+                      "(in every viscoplastic cell on a moving configuration); with half_step 0",
                       documented_number(kDefaultHourglassStiffness),
                       documented_number(kDefaultViscoplasticHourglassStiffness)),
           "ε of the cells' hourglass stiffness (docs/theory.md eqs. 3.2–3.4, 3.9); 0 = off."),
