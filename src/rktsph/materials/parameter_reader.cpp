@@ -57,7 +57,6 @@ std::string ParameterReader::misspelling_of(const std::string& key) const {
     written.push_back(entry.first);
   return closest_match(key, written);
 }
-}
 
 double ParameterReader::required(const std::string& key, double min, double max, bool open_min,
                                  bool open_max) {
