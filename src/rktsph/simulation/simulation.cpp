@@ -95,6 +95,22 @@ RunStatus Simulation::finish_observers(RunStatus status) {
   return status;
 }
 
+void Simulation::keep_state_before_step() {
+  // For the last output of a run that stops inside the step, into the same storage every step (no
+  // allocation after the first). Only what the step changes: the configuration is copied where
+  // the points move, and once where they do not (it is then the reference, a third of the state).
+  const State& now = state();
+  before_step_.time = now.time;
+  before_step_.step = now.step;
+  const auto from = now.arrays();
+  const auto to = before_step_.arrays();
+  for (std::size_t k = 0; k < from.size(); ++k)
+    *to[k] = *from[k];
+  if (step().motion() ||
+      before_step_.configuration.sph_nodes.size() != now.configuration.sph_nodes.size())
+    before_step_.configuration = now.configuration;
+}
+
 RunStatus Simulation::run() {
   const auto start = std::chrono::steady_clock::now();
   RunStatus status = RunStatus::Completed;
@@ -116,9 +132,7 @@ RunStatus Simulation::run() {
     }
     const double dt = step_length(s);
     if (!(dt > 0.0)) break;  // the round-off of t += dt already reached time.end
-    // Kept for the last output of a run that stops inside the step (into the same storage every
-    // step, so without allocation after the first).
-    before_step_ = state();
+    keep_state_before_step();
     try {
       step().advance(state(), dt);
     } catch (const std::exception& error) {  // e.g. a pressure solve that does not converge

@@ -125,6 +125,8 @@ class Simulation final : public Checkpointed {
   StopCheck stop_check_;
   bool resumed_ = false;
   bool stopped_early_ = false;
+  /// Copies into before_step_ what the next step will change.
+  void keep_state_before_step();
   State before_step_;  ///< the state before the current step (state_before_stop)
   bool stopped_in_step_ = false;
 };
