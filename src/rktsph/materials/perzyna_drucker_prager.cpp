@@ -132,8 +132,6 @@ void PerzynaDruckerPrager::viscoplastic_rate(const SymmetricTensor& stress,
   if (cutoff_rate > 0.0) volumetric += cutoff_rate / 3.0;
   for (int i = 0; i < 3; ++i)
     strain_rate[i] += volumetric;
-  for (double& rate : internal_rate)
-    rate = 0.0;
   frictional_internal_rates(strength_parameters, internal, equivalent_strain_rate(strain_rate),
                             internal_rate);
 }

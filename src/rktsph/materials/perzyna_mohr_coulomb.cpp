@@ -118,8 +118,6 @@ void PerzynaMohrCoulomb::viscoplastic_rate(const SymmetricTensor& stress,
     for (int i = 0; i < 6; ++i)
       strain_rate[i] += principal_rate[static_cast<std::size_t>(k)] *
                         all.projector[static_cast<std::size_t>(k)][static_cast<std::size_t>(i)];
-  for (double& rate : internal_rate)
-    rate = 0.0;
   frictional_internal_rates(parameters_, internal, equivalent_strain_rate(strain_rate),
                             internal_rate);
 }
