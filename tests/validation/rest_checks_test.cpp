@@ -49,6 +49,34 @@ TEST(OddEvenResidualTest, MirrorAtTheFirstNode) {
   EXPECT_DOUBLE_EQ(oddeven_residual(std::vector<double>{1.0, 2.0}), 0.0);
 }
 
+TEST(OddEvenResidualAlongTest, UnevenSpacingSeesNoPatternInALinearField) {
+  // Gaps of 0.25 and 0.5 m mixed, as a triangle mesh leaves on a refined edge: a linear field is
+  // 0 here, while the even-spacing formula would read the gaps as a pattern.
+  NodeLine line;
+  const std::vector<double> x = {0.0, 0.25, 0.75, 1.0, 1.5, 1.75, 2.25};
+  for (double position : x) {
+    line.x.push_back(position);
+    line.value.push_back(3.0 - 2.0 * position);
+  }
+  EXPECT_NEAR(oddeven_residual_along(line), 0.0, 1e-14);
+  EXPECT_GT(oddeven_residual(line.value), 0.05);
+  // An alternating part of amplitude A on that spacing: its full amplitude where the gaps agree.
+  const double amplitude = 0.2;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    line.value[i] += i % 2 == 0 ? amplitude : -amplitude;
+  EXPECT_NEAR(oddeven_residual_along(line), amplitude, 1e-12);
+}
+
+TEST(OddEvenResidualAlongTest, EvenSpacingIsTheLatticeFormulaToTheLastBit) {
+  NodeLine line;
+  for (int i = 0; i <= 12; ++i) {
+    line.x.push_back(0.1 * i);
+    line.value.push_back(std::sin(1.3 * i) + 0.01 * i * i);
+  }
+  EXPECT_EQ(oddeven_residual_along(line), oddeven_residual(line.value));
+  EXPECT_EQ(oddeven_residual_along(line, true), oddeven_residual(line.value, true));
+}
+
 TEST(SettlementOddEvenRatioTest, OverTheLoadedSurfaceAndTwoWidthsBeyond) {
   // b = 1: the nodes 0 <= x <= 5 count, those beyond do not.
   NodeLine settlement;

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -102,6 +103,132 @@ void mark_domain(Triangulation& triangulation, const GeometrySpec& geometry) {
     face->set_in_domain(inside[id]);
 }
 
+// The shapes' edges as constraints, the domain marked, and Delaunay refinement to edges at most h
+// and angles at least arcsin(sqrt(B)) but where an input angle is smaller.
+void mesh_shapes(Triangulation& triangulation, const GeometrySpec& geometry) {
+  for (const ShapeSpec& shape : geometry.shapes) {
+    const std::vector<Point> outline = shape_outline(shape);
+    for (std::size_t k = 0; k < outline.size(); ++k)
+      triangulation.insert_constraint(outline[k], outline[(k + 1) % outline.size()]);
+  }
+  mark_domain(triangulation, geometry);
+  CGAL::refine_Delaunay_mesh_2(triangulation, Criteria(kTriangleShapeBound, geometry.spacing),
+                               true);
+}
+
+double signed_area(const Point& a, const Point& b, const Point& c) {
+  return 0.5 * ((b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y()));
+}
+
+// The smallest squared sine of the corners of triangle abc, its longest squared edge and its
+// squared width (the smallest altitude, 2A over the longest edge: §4.8).
+struct TriangleShape {
+  double sine = 0.0, longest = 0.0, width = 0.0;
+};
+TriangleShape shape_of(const Point& a, const Point& b, const Point& c) {
+  const double ab = CGAL::squared_distance(a, b), bc = CGAL::squared_distance(b, c),
+               ca = CGAL::squared_distance(c, a);
+  const double twice_area = 2.0 * signed_area(a, b, c);
+  // sin of the corner between edges e and f: 2A / (|e| |f|); the smallest is opposite the shortest
+  // edge, between the two longest.
+  const double longest = std::max({ab, bc, ca});
+  const double middle = ab + bc + ca - longest - std::min({ab, bc, ca});
+  if (!(twice_area > 0.0)) return {-1.0, longest, 0.0};
+  return {twice_area * twice_area / (longest * middle), longest, twice_area * twice_area / longest};
+}
+
+// Centroidal smoothing of a refined mesh (docs/theory.md §3.6): every free vertex (one on no
+// shape edge, all of whose triangles are in the domain) moves towards the centroid of the polygon
+// its triangles make, sweep after sweep, the others staying; the triangles are kept, only their
+// corners move. Refinement leaves vertices crowded beside the constraints, thin triangles whose
+// width sets the time step (§4.8), and node patches so lopsided that the nodal strain average is
+// biased (§4.8, *Measured*). A move is made only if the vertex's triangles keep the refinement's
+// guarantees (every edge at most h, every angle above the bound or no smaller than before), or
+// else half of it, or a quarter; so the mesh stays as good as refinement made it, and is still a
+// valid triangulation of the shapes (though no longer exactly Delaunay). Written here rather than
+// taken from CGAL's Lloyd optimiser, whose sums run in an order set by memory addresses, so that
+// two builds of one case differed in the last bits, and which lengthens edges past h: here every
+// sum runs in an order fixed by the positions alone, so a case meshes to the same bits every time.
+void smooth_free_vertices(Triangulation& triangulation, double h) {
+  std::vector<Vertex> vertices;
+  for (const Vertex vertex : triangulation.finite_vertex_handles())
+    vertices.push_back(vertex);
+  std::sort(vertices.begin(), vertices.end(), [](const Vertex& a, const Vertex& b) {
+    const Point& p = a->point();
+    const Point& q = b->point();
+    return p.y() != q.y() ? p.y() < q.y() : p.x() < q.x();
+  });
+  // The star of each free vertex: its triangles' two other corners, counter-clockwise, the
+  // triangles in the order of those corners' places in the sorted list.
+  std::map<Vertex, std::size_t> index;
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    index[vertices[i]] = i;
+  std::vector<std::pair<Vertex, std::vector<std::array<Vertex, 2>>>> stars;
+  for (const Vertex& vertex : vertices) {
+    if (triangulation.are_there_incident_constraints(vertex)) continue;
+    std::vector<std::array<Vertex, 2>> star;
+    bool free = true;
+    auto face = triangulation.incident_faces(vertex);
+    const auto end = face;
+    do {
+      if (triangulation.is_infinite(face) || !face->is_in_domain()) {
+        free = false;
+        break;
+      }
+      const int k = face->index(vertex);
+      star.push_back({face->vertex(Triangulation::ccw(k)), face->vertex(Triangulation::cw(k))});
+    } while (++face != end);
+    if (!free) continue;
+    std::sort(star.begin(), star.end(), [&index](const auto& s, const auto& t) {
+      return std::make_pair(index.at(s[0]), index.at(s[1])) <
+             std::make_pair(index.at(t[0]), index.at(t[1]));
+    });
+    stars.emplace_back(vertex, std::move(star));
+  }
+  const double longest_allowed = h * h;
+  // Whether the star keeps the guarantees with its centre at p: every triangle counter-clockwise,
+  // no edge longer than h, no corner sharper than the bound or than the star's sharpest now, and
+  // no triangle narrower than the star's narrowest now (the time step's width, §4.8).
+  const auto acceptable = [&](const std::vector<std::array<Vertex, 2>>& star, const Point& p,
+                              const TriangleShape& worst_now) {
+    for (const auto& [b, c] : star) {
+      const TriangleShape shape = shape_of(p, b->point(), c->point());
+      if (shape.sine <= 0.0 || shape.longest > longest_allowed ||
+          shape.sine < std::min(kTriangleShapeBound, worst_now.sine) ||
+          shape.width < worst_now.width)
+        return false;
+    }
+    return true;
+  };
+  for (int sweep = 0; sweep < kSmoothingSweeps; ++sweep)
+    for (const auto& [vertex, star] : stars) {
+      const Point here = vertex->point();
+      double area = 0.0, x = 0.0, y = 0.0;
+      TriangleShape worst{1.0, 0.0, std::numeric_limits<double>::infinity()};
+      for (const auto& [b, c] : star) {
+        const Point& pb = b->point();
+        const Point& pc = c->point();
+        const double a = signed_area(here, pb, pc);
+        area += a;
+        x += a * (here.x() + pb.x() + pc.x()) / 3.0;
+        y += a * (here.y() + pb.y() + pc.y()) / 3.0;
+        const TriangleShape shape = shape_of(here, pb, pc);
+        worst.sine = std::min(worst.sine, shape.sine);
+        worst.width = std::min(worst.width, shape.width);
+      }
+      if (!(area > 0.0)) continue;
+      double step = 1.0;
+      for (int attempt = 0; attempt < 3; ++attempt, step *= 0.5) {
+        const Point moved(here.x() + step * (x / area - here.x()),
+                          here.y() + step * (y / area - here.y()));
+        if (acceptable(star, moved, worst)) {
+          vertex->set_point(moved);
+          break;
+        }
+      }
+    }
+}
+
 }  // namespace
 
 NodeSets build_triangle_node_sets(const GeometrySpec& geometry,
@@ -114,14 +241,8 @@ NodeSets build_triangle_node_sets(const GeometrySpec& geometry,
       throw InputError(shape.where, "geometry.cells", "triangles",
                        "triangle cells exist only in 2D", "lattice in 1D");
   try {
-    for (const ShapeSpec& shape : geometry.shapes) {
-      const std::vector<Point> outline = shape_outline(shape);
-      for (std::size_t k = 0; k < outline.size(); ++k)
-        triangulation.insert_constraint(outline[k], outline[(k + 1) % outline.size()]);
-    }
-    mark_domain(triangulation, geometry);
-    // Edges at most h; angles at least arcsin(sqrt(B)) but where an input angle is smaller.
-    CGAL::refine_Delaunay_mesh_2(triangulation, Criteria(kTriangleShapeBound, h), true);
+    mesh_shapes(triangulation, geometry);
+    smooth_free_vertices(triangulation, h);
   } catch (const CGAL::Failure_exception& failure) {
     // A CGAL precondition the reader's checks let through (e.g. coordinates so large that the
     // inexact constructions overflow): the shapes' fault, said as such rather than a crash.

@@ -17,6 +17,10 @@ namespace rktsph {
 /// which Delaunay refinement is proven to terminate (Ruppert's bound; §3.6).
 inline constexpr double kTriangleShapeBound = 0.125;
 
+/// Sweeps of centroidal smoothing after refinement (§3.6): each moves every free vertex to the
+/// centroid of the polygon its triangles make; measured in §3.6.
+inline constexpr int kSmoothingSweeps = 10;
+
 /// Meshes the shapes of a 2D `geometry` with triangles whose edges are at most geometry.spacing.
 /// Shapes may overlap or touch (the later shape's material wins, as on the lattice) and their
 /// vertices may lie anywhere; the space between disjoint shapes stays empty. A node's material is

@@ -34,6 +34,8 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_vpw_vertical_cut_footing},
       {"strip-footing-elastic", "flexible strip load on a dry elastic stratum against Flamant",
        &validate_strip_footing_elastic},
+      {"triangles-slope-elastic", "2:1 elastic slope on a triangle mesh, ramped gravity (I28)",
+       &validate_triangles_slope_elastic},
       {"hanging-beam", "slender elastic beam hanging under ramped gravity, damped (V2-0)",
        &validate_hanging_beam},
       {"ld-bar1d-elastic", "1D elastic bar with the large-deformation model (5.3.2)",

@@ -22,6 +22,25 @@ double oddeven_residual(std::span<const double> values, bool mirror_first) {
   return largest;
 }
 
+double oddeven_residual_along(const NodeLine& line, bool mirror_first) {
+  const std::size_t n = line.x.size();
+  bool even = true;
+  for (std::size_t i = 1; i + 1 < n && even; ++i)
+    even = std::abs((line.x[i + 1] - line.x[i]) - (line.x[1] - line.x[0])) <=
+           1e-9 * std::abs(line.x[1] - line.x[0]);
+  if (n < 3 || even) return oddeven_residual(line.value, mirror_first);
+  double largest = 0.0;
+  if (mirror_first)  // the image of node 1 lies as far beyond node 0: L_0 = s_1
+    largest = std::abs(line.value[0] - line.value[1]) / 2.0;
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    const double before = line.x[i] - line.x[i - 1], after = line.x[i + 1] - line.x[i];
+    const double straight =
+        (line.value[i - 1] * after + line.value[i + 1] * before) / (before + after);
+    largest = std::max(largest, std::abs(line.value[i] - straight) / 2.0);
+  }
+  return largest;
+}
+
 NodeLine node_row(const Simulation& simulation, double y, double x_min, double x_max,
                   const std::function<double(std::size_t node)>& value) {
   const PointCloud& nodes = simulation.nodes().sph_nodes;
@@ -64,17 +83,18 @@ double settlement_oddeven_ratio(const NodeLine& settlement, double half_width) {
   // The loaded surface and two loaded widths B = 2b beyond it: 0 <= x <= b + 2B.
   const double x_end = 5.0 * half_width;
   const double tolerance = 1e-6 * half_width;
-  std::vector<double> values;
+  NodeLine checked;
   bool starts_on_symmetry_plane = false;
   double largest = 0.0;
   for (std::size_t k = 0; k < settlement.x.size(); ++k) {
     if (settlement.x[k] < -tolerance || settlement.x[k] > x_end + tolerance) continue;
-    if (values.empty()) starts_on_symmetry_plane = std::abs(settlement.x[k]) < tolerance;
-    values.push_back(settlement.value[k]);
+    if (checked.x.empty()) starts_on_symmetry_plane = std::abs(settlement.x[k]) < tolerance;
+    checked.x.push_back(settlement.x[k]);
+    checked.value.push_back(settlement.value[k]);
     largest = std::max(largest, std::abs(settlement.value[k]));
   }
-  if (values.size() < 3 || largest == 0.0) return std::numeric_limits<double>::quiet_NaN();
-  return oddeven_residual(values, starts_on_symmetry_plane) / largest;
+  if (checked.x.size() < 3 || largest == 0.0) return std::numeric_limits<double>::quiet_NaN();
+  return oddeven_residual_along(checked, starts_on_symmetry_plane) / largest;
 }
 
 double FootingContactSampler::sample(const Simulation& simulation) {

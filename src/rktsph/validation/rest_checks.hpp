@@ -37,6 +37,14 @@ struct NodeLine {
   std::vector<double> x, value;
 };
 
+/// oddeven_residual of values at increasing abscissae s that need not be evenly spaced (a row or
+/// a face of a triangle mesh): largest |s_i − L_i|/2, L_i the straight line through the two
+/// neighbours at s_i, which on even spacing is the expression above. A linear field gives 0 on any
+/// spacing, so a mesh's uneven nodes alone raise no pattern. Evenly spaced input (every gap equal
+/// to 1e-9 of the first) is passed to oddeven_residual unchanged, so lattice values are the same
+/// to the last bit. With `mirror_first`, the first node lies on a symmetry plane (s_{−1} = s_1).
+double oddeven_residual_along(const NodeLine& line, bool mirror_first = false);
+
 /// The nodes of the row y = `y` (within dx/4) with x_min <= x <= x_max (within dx/4), sorted by x,
 /// with value(node).
 NodeLine node_row(const Simulation& simulation, double y, double x_min, double x_max,
