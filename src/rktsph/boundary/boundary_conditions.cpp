@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "rktsph/core/axes.hpp"
+#include "rktsph/physics/water_table.hpp"
 
 namespace rktsph {
 
@@ -367,6 +368,25 @@ BoundaryConditions::BoundaryConditions(
       drained_nodes_.push_back(node);
       drained_function_.push_back(function);
       pressure_constraints_.push_back({node, pore_pressure_field_, function, 1.0});
+    }
+  }
+  // A water table (docs/theory.md §6.9): the soil at and above it is drained, its excess pore
+  // pressure held at 0, which makes the table itself the drained boundary of the saturated soil
+  // below it. A drained face keeps its own prescribed value.
+  if (description.pore_fluid && description.pore_fluid->water_table) {
+    const WaterTable table(*description.pore_fluid->water_table);
+    std::vector<char> drained(n, 0);
+    for (std::int32_t node : drained_nodes_)
+      drained[static_cast<std::size_t>(node)] = 1;
+    const int zero = add_function(TimeFunction::constant(0.0));
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = d == 2 ? nodes.sph_nodes.position[0][i] : 0.0;
+      const double y = nodes.sph_nodes.position[static_cast<std::size_t>(d - 1)][i];
+      if (drained[i] || y < table.height(x) - tolerance) continue;
+      const auto node = static_cast<std::int32_t>(i);
+      drained_nodes_.push_back(node);
+      drained_function_.push_back(zero);
+      pressure_constraints_.push_back({node, pore_pressure_field_, zero, 1.0});
     }
   }
 
