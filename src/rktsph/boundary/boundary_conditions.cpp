@@ -370,7 +370,7 @@ BoundaryConditions::BoundaryConditions(
       pressure_constraints_.push_back({node, pore_pressure_field_, function, 1.0});
     }
   }
-  // A water table (docs/theory.md §6.9): the soil at and above it is drained, its excess pore
+  // A water table (docs/theory.md §6.8): the soil at and above it is drained, its excess pore
   // pressure held at 0, which makes the table itself the drained boundary of the saturated soil
   // below it. A drained face keeps its own prescribed value.
   if (description.pore_fluid && description.pore_fluid->water_table) {

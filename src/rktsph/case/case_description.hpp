@@ -153,7 +153,7 @@ inline const std::vector<std::pair<std::string, PressurePreconditioner>>& precon
   return words;
 }
 
-/// A phreatic surface of the saturated model (docs/theory.md §6.9): a level, or a polyline of
+/// A phreatic surface of the saturated model (docs/theory.md §6.8): a level, or a polyline of
 /// the surface's height y_w(x), held constant beyond its end vertices. Below it the pore water is
 /// hydrostatic, above it the soil is drained and weighs `density_above`.
 struct WaterTableSpec {

@@ -101,7 +101,7 @@ void check_pore_fluid(const CaseDescription& description, std::vector<CaseWarnin
     warnings.push_back(std::move(*warning));
 }
 
-// The water table (docs/theory.md §6.9) against the body's vertical extent: a table above the
+// The water table (docs/theory.md §6.8) against the body's vertical extent: a table above the
 // body is allowed (a submerged body, every node saturated) and gets no warning; one below the
 // body leaves it dry, drained throughout, which is most likely a table given in the wrong frame.
 void check_water_table(const CaseDescription& description, std::vector<CaseWarning>& warnings) {

@@ -277,7 +277,7 @@ void DrySolid::advance_velocities(std::int64_t n, const FieldArray& rate, double
 void DrySolid::advance_weighted_velocities(std::int64_t n, const FieldArray& rate, double delta,
                                            int substeps, double interval, FieldArray& values,
                                            const FieldArray& internal) const {
-  // advance_velocities with the body force of each point scaled by its weights (eq. 6.22): the
+  // advance_velocities with the body force of each point scaled by its weights (eq. 6.8): the
   // vertical component by w, and in 2D s times it added along x (a sloping water table's seepage
   // force). The loads of the sub-steps are those advance_velocities evaluated.
   const int d = dimension();

@@ -91,7 +91,7 @@ class DrySolid : public PhysicsModel {
            SourceIntegration integration, bool pore_pressure);
 
   /// The internal variables that scale the body force point by point (a water table, docs/theory.md
-  /// eq. 6.22): b_i = (b_x + s_i b_y, w_i b_y) in 2D, w_i b_x in 1D, with w the internal variable
+  /// eq. 6.8): b_i = (b_x + s_i b_y, w_i b_y) in 2D, w_i b_x in 1D, with w the internal variable
   /// `weight` and s the one after it (2D). -1: the body force is the same at every point.
   void set_body_force_weights(int weight) { body_force_weight_ = weight; }
 

@@ -50,7 +50,7 @@ std::unique_ptr<PhysicsModel> create_dry_large_deformation(
 }
 
 // A water table is a level surface of the hydrostatic pore pressure under gravity along -y (-x
-// in 1D), the vertical axis of its heights (docs/theory.md §6.9).
+// in 1D), the vertical axis of its heights (docs/theory.md §6.8).
 void check_water_table_gravity(const CaseDescription& description) {
   const int d = description.dimension;
   const WaterTableSpec& table = *description.pore_fluid->water_table;

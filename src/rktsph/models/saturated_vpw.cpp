@@ -28,7 +28,7 @@ std::array<double, 2> SaturatedVpw::body_force_weights(std::int32_t material, do
                                                        double y) const {
   // Below the table -alpha grad p_h = alpha rho_w (g_y y_w'(x), -g_y) per unit volume, so the
   // vertical weight is (rho - alpha rho_w)/rho (buoyancy) and the seepage weight
-  // s = alpha rho_w y_w'/rho multiplies g_y along x; above it the soil weighs rho_above (eq. 6.22).
+  // s = alpha rho_w y_w'/rho multiplies g_y along x; above it the soil weighs rho_above (eq. 6.8).
   const double density = this->material(material).density();
   const double alpha = fluid_.biot_coefficient, water = fluid_.fluid_density;
   if (water_table_->depth_below(x, y) > 0.0)
@@ -47,7 +47,7 @@ void SaturatedVpw::place_water_table(const PointCloud& sph_nodes,
   const int d = dimension();
   const std::size_t n = node_material.size();
   const int weight = DrySolid::internal_count();
-  // p_h = rho_w |g_y| (y_w - y)^+ (eq. 6.20); the factor of the gravity ramp is applied in time.
+  // p_h = rho_w |g_y| (y_w - y)^+ (eq. 6.6); the factor of the gravity ramp is applied in time.
   const double gravity = std::abs(loads().gravity[static_cast<std::size_t>(d - 1)]);
   hydrostatic_at_full_gravity_.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {

@@ -2,7 +2,7 @@
 // the pore pressure p_w (positive in compression), which the RK-TSPH pass carries frozen:
 //   rho dv/dt = div sigma' - alpha grad p_w + rho b - rho xi v        (6.1)
 // p_w itself is advanced by the pressure projection (models/pressure_projection.hpp).
-// With a water table (docs/theory.md §6.9) the carried p_w is the excess over the hydrostatic
+// With a water table (docs/theory.md §6.8) the carried p_w is the excess over the hydrostatic
 // pressure p_h, whose gradient enters (6.1) in closed form as a weight on the body force.
 #pragma once
 
@@ -36,8 +36,8 @@ class SaturatedVpw final : public DrySolid {
 
   const PoreFluid& fluid() const { return fluid_; }
 
-  // The water table (docs/theory.md §6.9). Its internal variables follow the materials': the
-  // body-force weights w (vertical) and, in 2D, s (seepage along x) of eq. 6.22.
+  // The water table (docs/theory.md §6.8). Its internal variables follow the materials': the
+  // body-force weights w (vertical) and, in 2D, s (seepage along x) of eq. 6.8.
   int internal_count() const override {
     return static_cast<int>(internal_names_with_table_.size());
   }
@@ -46,12 +46,12 @@ class SaturatedVpw final : public DrySolid {
   }
   bool has_water_table() const override { return water_table_.has_value(); }
   double hydrostatic_pore_pressure(std::size_t node, double time) const override;
-  /// Places the SPH nodes against the water table: p_h of each (eq. 6.20, at full gravity) and
-  /// its body-force weights (eq. 6.22), the mean over the node's span y -+ spacing/2, in
+  /// Places the SPH nodes against the water table: p_h of each (eq. 6.6, at full gravity) and
+  /// its body-force weights (eq. 6.8), the mean over the node's span y -+ spacing/2, in
   /// `internal`. Nothing without a water table.
   void place_water_table(const PointCloud& sph_nodes, std::span<const std::int32_t> node_material,
                          double spacing, FieldArray& internal);
-  /// The soil's weights at (x, y) of material m: {w, s} of eq. 6.22.
+  /// The soil's weights at (x, y) of material m: {w, s} of eq. 6.8.
   std::array<double, 2> body_force_weights(std::int32_t material, double x, double y) const;
   /// y_w at x; only with a water table.
   const std::optional<WaterTable>& water_table() const { return water_table_; }

@@ -224,7 +224,7 @@ void FieldSeriesWriter::write(const Simulation& simulation, const State& state) 
       fields.push_back(field);
     } else if (name == "total_stress") {
       // sigma = sigma' - alpha p_w I (docs/theory.md §1.1).
-      // With a water table p_w is the hydrostatic p_h plus the carried excess (eq. 6.21).
+      // With a water table p_w is the hydrostatic p_h plus the carried excess (eq. 6.7).
       const double alpha = model.biot_coefficient();
       const double* pore = model.has_water_table()
                                ? computed(find_quantity(simulation, "pore_pressure"))

@@ -1,6 +1,6 @@
-// The phreatic surface of the saturated model (docs/theory.md §6.9): its height y_w(x), the
+// The phreatic surface of the saturated model (docs/theory.md §6.8): its height y_w(x), the
 // hydrostatic pore pressure below it and the weight of the soil on either side of it.
-//   p_h = rho_w g (y_w(x) - y) below the table, 0 above it                       (6.20)
+//   p_h = rho_w g (y_w(x) - y) below the table, 0 above it                       (6.6)
 // The vertical axis is the last one (y in 2D, x in 1D, where the table is a level).
 #pragma once
 

@@ -359,7 +359,7 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
 
 namespace {
 // The mass per unit area above SPH node i of a column of its material from the ground surface
-// down, each part at the density its body force carries (eq. 6.23): rho_above over the dry part
+// down, each part at the density its body force carries (eq. 6.9): rho_above over the dry part
 // above the water table, rho - alpha rho_w over the part below it. Times g_y it is sigma'_v.
 double effective_overburden_mass(const SaturatedVpw& model, std::int32_t material,
                                  const PointCloud& sph_nodes, std::size_t i, double surface) {
@@ -397,7 +397,7 @@ void Assembly::initialise_state() {
                                  state_.internal);
   if (description_.initial.geostatic_surface) {
     // sigma_v = rho g_y (surface - y) (g_y < 0 gives compression), sigma_h = K0 sigma_v; with a
-    // water table the effective overburden of eq. 6.23 instead.
+    // water table the effective overburden of eq. 6.9 instead.
     const double surface = *description_.initial.geostatic_surface;
     const double g_vertical =
         description_.gravity ? description_.gravity->acceleration[d - 1] : 0.0;

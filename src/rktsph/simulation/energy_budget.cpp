@@ -94,7 +94,7 @@ EnergyRates measure_energy(const Simulation& simulation) {
   const double xi = model.damping(state.time);
   const int internal_count = state.internal.field_count();
   std::array<double, 16> internal{};
-  // With a water table each node's body force is weighted (docs/theory.md eq. 6.22).
+  // With a water table each node's body force is weighted (docs/theory.md eq. 6.8).
   const auto& names = model.internal_names();
   const auto weight_name = std::find(names.begin(), names.end(), "gravity_weight");
   const int weight =

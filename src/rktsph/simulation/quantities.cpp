@@ -12,7 +12,7 @@ NodeQuantity find_quantity(const Simulation& simulation, const std::string& name
   const PhysicsModel& model = simulation.model();
   const auto& fields = model.field_names();
   const int pore = model.pore_pressure_field();
-  // With a water table the carried field is the excess: p_w = p_h + it (docs/theory.md eq. 6.21).
+  // With a water table the carried field is the excess: p_w = p_h + it (docs/theory.md eq. 6.7).
   const auto pore_pressure = [&model, pore](const State& s, std::size_t i) {
     return s.fields(pore, i) + model.hydrostatic_pore_pressure(i, s.time);
   };

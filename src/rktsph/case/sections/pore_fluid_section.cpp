@@ -24,7 +24,7 @@ NumberRange tolerance_range() {
 }
 
 // The polyline of a water table: two or more [x, y] vertices with x strictly increasing, so that
-// it is a height y_w(x) (docs/theory.md §6.9).
+// it is a height y_w(x) (docs/theory.md §6.8).
 std::vector<std::array<double, 2>> read_table_polyline(const YamlNode& node, int dimension) {
   reject_unless_2d(node, dimension, "'polyline' is");
   std::vector<std::array<double, 2>> vertices;
@@ -138,7 +138,7 @@ const KeyTable<PoreFluidSpec>& pore_fluid_keys() {
                     "θ of the pore-pressure checkerboard stabilisation (docs/theory.md §6.6)."),
       Key<P>{"water_table", "map", "", "none (fully saturated)", "",
              "A phreatic surface: hydrostatic p_w below it, drained soil above it "
-             "(docs/theory.md §6.9).",
+             "(docs/theory.md §6.8).",
              false, read_water_table,
              [](YAML::Emitter& out, const P& fluid, const CaseDescription& description) {
                if (!fluid.water_table) return;

@@ -1,6 +1,6 @@
-// Issue 30 (docs/theory.md §6.9, §8.8b): a saturated elastic layer with a water table, settling
+// Issue 30 (docs/theory.md §6.8, §8.12): a saturated elastic layer with a water table, settling
 // under gravity ramped in from a stress-free start, comes to rest at the closed-form state of
-// eqs. 6.20 and 6.23. Every number is read from the case file (densities, porosity, Biot
+// eqs. 6.6 and 6.9. Every number is read from the case file (densities, porosity, Biot
 // coefficient, table level, geometry, gravity), so that a variant at other parameters is checked
 // against its own closed form.
 //
@@ -9,7 +9,7 @@
 //   of the output (the hydrostatic part plus the carried excess).
 // - effective_stress_error: max over every SPH node of |sigma'_v - sigma'_v,ref| over the
 //   reference at the base, sigma'_v,ref = -g [rho_above (dry part above the node) + (rho - alpha
-//   rho_w) (wet part above it)] (eq. 6.23).
+//   rho_w) (wet part above it)] (eq. 6.9).
 // - horizontal_stress_error: the same for sigma'_h against K0 sigma'_v,ref, K0 = nu/(1 - nu) (the
 //   laterally confined layer, mirror sides).
 // - residual_velocity_ratio: largest |v| at the end over its peak (rest_checks.hpp).
@@ -44,11 +44,11 @@ struct Layer {
   double table = 0.0;    // y_w
   double base = 0.0, top = 0.0, x_min = 0.0, x_max = 0.0, spacing = 0.0;
 
-  /// p_h = rho_w g (y_w - y)^+ (eq. 6.20).
+  /// p_h = rho_w g (y_w - y)^+ (eq. 6.6).
   double hydrostatic_pressure(double y) const {
     return water_density * gravity * std::max(0.0, table - y);
   }
-  /// -sigma'_v, compression positive (eq. 6.23).
+  /// -sigma'_v, compression positive (eq. 6.9).
   double effective_overburden(double y) const {
     const double dry = std::max(0.0, top - std::max(y, table));
     const double wet = std::max(0.0, std::min(top, table) - y);
@@ -140,7 +140,7 @@ void report_water_table(ValidationReport& report, const std::filesystem::path& d
       "water table at y = {:g} m (dx = {:g} m). Gravity is ramped in over {:g} s from a "
       "stress-free start with mass damping {:g}/s; the excess pore pressure of the settlement "
       "drains through the table, where the soil above it is drained. At t = {:g} s every node "
-      "must be at the closed-form rest state (docs/theory.md eqs. 6.20, 6.23): p_w = rho_w g "
+      "must be at the closed-form rest state (docs/theory.md eqs. 6.6, 6.9): p_w = rho_w g "
       "(y_w - y) below the table, sigma'_v = rho_above g (y_top - y) above it and rho_above g "
       "H_dry + (rho - alpha rho_w) g (y_w - y) below it, sigma'_h = K0 sigma'_v; and at rest "
       "(largest velocity at the end below 1e-3 of its peak).",
@@ -164,7 +164,7 @@ void report_water_table(ValidationReport& report, const std::filesystem::path& d
         {"SPH -sigma'_xx", profiles.horizontal, profiles.y, "points"},
         profile("p_w = rho_w g (y_w - y)",
                 [&layer](double y) { return 1e-3 * layer.hydrostatic_pressure(y); }),
-        profile("sigma'_v, eq. 6.23",
+        profile("sigma'_v, eq. 6.9",
                 [&layer](double y) { return 1e-3 * layer.effective_overburden(y); }),
         profile("K0 sigma'_v", [&layer](double y) {
           return 1e-3 * layer.k0() * layer.effective_overburden(y);
