@@ -1072,9 +1072,6 @@ TEST(CaseReader, MissingFileIsAnInputError) {
   }
 }
 
-}  // namespace
-}  // namespace rktsph
-
 // ------------------------------------------------------------------------------------------------
 // pore_fluid.water_table (docs/input-reference.md, "water_table"; docs/theory.md §6.8)
 
@@ -1083,15 +1080,15 @@ namespace water_table {
 const std::string kEntry = "  solver_tolerance: 1.0e-9\n";
 
 std::string with_table(const std::string& table) {
-  return replace_once(read_fixture("rich2d.yaml"), kEntry, kEntry + "  water_table: " + table + "\n");
+  return replace_once(read_fixture("rich2d.yaml"), kEntry,
+                      kEntry + "  water_table: " + table + "\n");
 }
 
 }  // namespace water_table
 
 TEST(CaseReader, WaterTableLevelPolylineAndDensityAboveAreRead) {
   EXPECT_FALSE(read_case_text(read_fixture("rich2d.yaml"), kFile).pore_fluid->water_table);
-  const CaseDescription level =
-      read_case_text(water_table::with_table("{level: 4.5}"), kFile);
+  const CaseDescription level = read_case_text(water_table::with_table("{level: 4.5}"), kFile);
   ASSERT_TRUE(level.pore_fluid->water_table);
   EXPECT_EQ(level.pore_fluid->water_table->level, 4.5);
   EXPECT_TRUE(level.pore_fluid->water_table->polyline.empty());
@@ -1122,8 +1119,7 @@ TEST(CaseReader, WaterTableWithBothOrNeitherShapeIsRejected) {
 }
 
 TEST(CaseReader, WaterTablePolylineMustRiseInXAndHaveTwoVertices) {
-  const std::string text =
-      water_table::with_table("{polyline: [[0, 8], [20, 8], [15, 2]]}");
+  const std::string text = water_table::with_table("{polyline: [[0, 8], [20, 8], [15, 2]]}");
   const InputError error = read_error(text);
   EXPECT_EQ(error.location().file, kFile);
   EXPECT_EQ(error.location().line, position_of(text, "water_table:").line);
@@ -1142,3 +1138,6 @@ TEST(CaseReader, WaterTablePolylineMustRiseInXAndHaveTwoVertices) {
   EXPECT_EQ(unknown.key(), "pore_fluid.water_table.levl");
   EXPECT_NE(std::string(unknown.what()).find("level"), std::string::npos) << unknown.what();
 }
+
+}  // namespace
+}  // namespace rktsph

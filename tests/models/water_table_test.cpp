@@ -103,7 +103,8 @@ TEST(WaterTable, GeostaticStartIsHydrostaticWithTheEffectiveOverburden) {
   const int seepage = internal_index(simulation, "seepage_weight");
   ASSERT_GE(weight, 0);
   ASSERT_EQ(seepage, weight + 1);
-  const double wet = (kDensity - kWater) / kDensity, dry = (kDensity - kPorosity * kWater) / kDensity;
+  const double wet = (kDensity - kWater) / kDensity,
+               dry = (kDensity - kPorosity * kWater) / kDensity;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const double y = nodes.position[1][i];
     const double reference = effective_overburden(y, kTable);
@@ -113,8 +114,7 @@ TEST(WaterTable, GeostaticStartIsHydrostaticWithTheEffectiveOverburden) {
     EXPECT_NEAR(-state.fields(yy, i), reference, 1e-9 * reference + 1e-9) << "y = " << y;
     EXPECT_NEAR(state.fields(xx, i), kK0 * state.fields(yy, i), 1e-9 * reference + 1e-9);
     // The mean weight over the node's span y -+ dx/2 (eq. 6.8): half and half on the table.
-    const double expected =
-        y < kTable - 1e-9 ? wet : (y > kTable + 1e-9 ? dry : 0.5 * (wet + dry));
+    const double expected = y < kTable - 1e-9 ? wet : (y > kTable + 1e-9 ? dry : 0.5 * (wet + dry));
     EXPECT_NEAR(state.internal(weight, i), expected, 1e-15) << "y = " << y;
     EXPECT_EQ(state.internal(seepage, i), 0.0);
   }
