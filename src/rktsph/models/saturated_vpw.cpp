@@ -41,7 +41,8 @@ std::array<double, 2> SaturatedVpw::body_force_weights(std::int32_t material, do
 }
 
 void SaturatedVpw::place_water_table(const PointCloud& sph_nodes,
-                                     std::span<const std::int32_t> node_material, double spacing,
+                                     std::span<const std::int32_t> node_material,
+                                     std::span<const std::array<double, 2>> spans,
                                      FieldArray& internal) {
   if (!water_table_) return;
   const int d = dimension();
@@ -55,13 +56,15 @@ void SaturatedVpw::place_water_table(const PointCloud& sph_nodes,
     const double y = sph_nodes.position[static_cast<std::size_t>(d - 1)][i];
     hydrostatic_at_full_gravity_[i] =
         fluid_.fluid_density * gravity * water_table_->depth_below(x, y);
-    // A node stands for the soil from y - dx/2 to y + dx/2: its weights are the mean over that
-    // span, so that the weight of every lattice row, and so sigma'_v below it, is exact wherever
-    // the table cuts the rows (a node on the table is half wet, half dry).
+    // The weights are the mean over the soil the node stands for, so that the weight of every
+    // lattice row is exact wherever the table cuts the rows (a node on the table inside the body
+    // is half wet, half dry; one on the table at the top surface is wet).
     const double table = water_table_->height(x);
-    const double wet_fraction = std::clamp((table - (y - 0.5 * spacing)) / spacing, 0.0, 1.0);
-    const std::array<double, 2> wet = body_force_weights(node_material[i], x, table - spacing);
-    const std::array<double, 2> dry = body_force_weights(node_material[i], x, table + spacing);
+    const double low = spans[i][0], high = spans[i][1];
+    const double wet_fraction =
+        high > low ? std::clamp((table - low) / (high - low), 0.0, 1.0) : (y < table ? 1.0 : 0.0);
+    const std::array<double, 2> wet = body_force_weights(node_material[i], x, table - 1.0);
+    const std::array<double, 2> dry = body_force_weights(node_material[i], x, table + 1.0);
     for (int k = 0; k < (d == 2 ? 2 : 1); ++k)
       internal(weight + k, i) = wet_fraction * wet[static_cast<std::size_t>(k)] +
                                 (1.0 - wet_fraction) * dry[static_cast<std::size_t>(k)];

@@ -47,10 +47,10 @@ class SaturatedVpw final : public DrySolid {
   bool has_water_table() const override { return water_table_.has_value(); }
   double hydrostatic_pore_pressure(std::size_t node, double time) const override;
   /// Places the SPH nodes against the water table: p_h of each (eq. 6.6, at full gravity) and
-  /// its body-force weights (eq. 6.8), the mean over the node's span y -+ spacing/2, in
-  /// `internal`. Nothing without a water table.
+  /// its body-force weights (eq. 6.8), the mean over the node's vertical span [low, high] (the
+  /// heights of the soil it stands for), in `internal`. Nothing without a water table.
   void place_water_table(const PointCloud& sph_nodes, std::span<const std::int32_t> node_material,
-                         double spacing, FieldArray& internal);
+                         std::span<const std::array<double, 2>> spans, FieldArray& internal);
   /// The soil's weights at (x, y) of material m: {w, s} of eq. 6.8.
   std::array<double, 2> body_force_weights(std::int32_t material, double x, double y) const;
   /// y_w at x; only with a water table.

@@ -358,6 +358,31 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
 }
 
 namespace {
+// The heights of the soil each SPH node stands for: y -+ dx/2, cut at y on a side with no cell
+// (a node of the top or bottom surface stands for soil on one side only).
+std::vector<std::array<double, 2>> vertical_spans(const NodeSets& nodes) {
+  const int d = nodes.dimension;
+  const auto vertical = static_cast<std::size_t>(d - 1);
+  const std::vector<double>& height = nodes.sph_nodes.position[vertical];
+  std::vector<std::array<char, 2>> sides(nodes.sph_nodes.size(), {0, 0});  // below, above
+  for (std::size_t p = 0; p < nodes.cells.cell_count(); ++p) {
+    const auto corners = nodes.cells.corners(p);
+    double centre = 0.0;
+    for (const std::int32_t node : corners)
+      centre += height[static_cast<std::size_t>(node)] / static_cast<double>(corners.size());
+    for (const std::int32_t node : corners) {
+      const double y = height[static_cast<std::size_t>(node)];
+      if (centre < y - 1e-9 * nodes.spacing) sides[static_cast<std::size_t>(node)][0] = 1;
+      if (centre > y + 1e-9 * nodes.spacing) sides[static_cast<std::size_t>(node)][1] = 1;
+    }
+  }
+  std::vector<std::array<double, 2>> spans(sides.size());
+  for (std::size_t i = 0; i < spans.size(); ++i)
+    spans[i] = {height[i] - (sides[i][0] ? 0.5 * nodes.spacing : 0.0),
+                height[i] + (sides[i][1] ? 0.5 * nodes.spacing : 0.0)};
+  return spans;
+}
+
 // The mass per unit area above SPH node i of a column of its material from the ground surface
 // down, each part at the density its body force carries (eq. 6.9): rho_above over the dry part
 // above the water table, rho - alpha rho_w over the part below it. Times g_y it is sigma'_v.
@@ -393,7 +418,7 @@ void Assembly::initialise_state() {
   auto* saturated = dynamic_cast<SaturatedVpw*>(model_.get());
   const bool water_table = saturated && saturated->has_water_table();
   if (water_table)
-    saturated->place_water_table(nodes_.sph_nodes, nodes_.node_material, nodes_.spacing,
+    saturated->place_water_table(nodes_.sph_nodes, nodes_.node_material, vertical_spans(nodes_),
                                  state_.internal);
   if (description_.initial.geostatic_surface) {
     // sigma_v = rho g_y (surface - y) (g_y < 0 gives compression), sigma_h = K0 sigma_v; with a
