@@ -154,7 +154,11 @@ TEST(WaterTable, ATableAboveTheSurfaceSubmergesTheBody) {
   const PointCloud& nodes = simulation.nodes().sph_nodes;
   const int yy = simulation.model().stress_field(1, 1);
   const NodeQuantity pore_pressure = find_quantity(simulation, "pore_pressure");
-  EXPECT_TRUE(simulation.boundary_conditions().drained_nodes().empty());
+  // Drained: the free top face only, which touches the water above it.
+  for (std::int32_t node : simulation.boundary_conditions().drained_nodes())
+    EXPECT_EQ(nodes.position[1][static_cast<std::size_t>(node)], kTop);
+  EXPECT_EQ(simulation.boundary_conditions().drained_nodes().size(),
+            static_cast<std::size_t>(std::lround(2.0 / kSpacing)) + 1);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const double y = nodes.position[1][i];
     EXPECT_NEAR(-simulation.state().fields(yy, i), (kDensity - kWater) * kGravity * (kTop - y),

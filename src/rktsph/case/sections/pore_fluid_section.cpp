@@ -70,8 +70,10 @@ const KeyTable<WaterTableSpec>& water_table_keys() {
 void read_water_table(const YamlNode& node, PoreFluidSpec& fluid, Reading& reading) {
   WaterTableSpec table;
   table.where = YamlMap(node).where();
+  const std::size_t errors_before = reading.errors.size();
   read_keys(node, water_table_keys(), table, reading);
-  // By presence, not by value: a value already refused is not reported again as missing.
+  // A misspelt or refused key is reported once, not again as a missing shape.
+  if (reading.errors.size() > errors_before) return;
   const YamlMap map(node);
   const bool level = map.find("level") != nullptr, polyline = map.find("polyline") != nullptr;
   if (level == polyline) {
