@@ -1072,5 +1072,72 @@ TEST(CaseReader, MissingFileIsAnInputError) {
   }
 }
 
+// ------------------------------------------------------------------------------------------------
+// pore_fluid.water_table (docs/input-reference.md, "water_table"; docs/theory.md §6.8)
+
+namespace water_table {
+
+const std::string kEntry = "  solver_tolerance: 1.0e-9\n";
+
+std::string with_table(const std::string& table) {
+  return replace_once(read_fixture("rich2d.yaml"), kEntry,
+                      kEntry + "  water_table: " + table + "\n");
+}
+
+}  // namespace water_table
+
+TEST(CaseReader, WaterTableLevelPolylineAndDensityAboveAreRead) {
+  EXPECT_FALSE(read_case_text(read_fixture("rich2d.yaml"), kFile).pore_fluid->water_table);
+  const CaseDescription level = read_case_text(water_table::with_table("{level: 4.5}"), kFile);
+  ASSERT_TRUE(level.pore_fluid->water_table);
+  EXPECT_EQ(level.pore_fluid->water_table->level, 4.5);
+  EXPECT_TRUE(level.pore_fluid->water_table->polyline.empty());
+  EXPECT_FALSE(level.pore_fluid->water_table->density_above);
+  const CaseDescription polyline = read_case_text(
+      water_table::with_table("{polyline: [[0, 8], [20, 8], [40, 2]], density_above: 1800}"),
+      kFile);
+  const WaterTableSpec& table = *polyline.pore_fluid->water_table;
+  EXPECT_FALSE(table.level);
+  ASSERT_EQ(table.polyline.size(), 3u);
+  EXPECT_EQ(table.polyline[2][0], 40.0);
+  EXPECT_EQ(table.polyline[2][1], 2.0);
+  EXPECT_EQ(table.density_above, 1800.0);
+}
+
+TEST(CaseReader, WaterTableWithBothOrNeitherShapeIsRejected) {
+  const std::string both = water_table::with_table("{level: 4.5, polyline: [[0, 1], [2, 3]]}");
+  const InputError two = read_error(both);
+  EXPECT_EQ(two.location().file, kFile);
+  EXPECT_EQ(two.location().line, position_of(both, "water_table:").line);
+  EXPECT_EQ(two.key(), "pore_fluid.water_table.polyline");
+  EXPECT_NE(two.allowed().find("exactly one of level"), std::string::npos) << two.what();
+  const std::string neither = water_table::with_table("{density_above: 1800}");
+  const InputError none = read_error(neither);
+  EXPECT_EQ(none.key(), "pore_fluid.water_table");
+  EXPECT_EQ(none.location().line, position_of(neither, "water_table:").line);
+  EXPECT_NE(none.allowed().find("exactly one of level"), std::string::npos) << none.what();
+}
+
+TEST(CaseReader, WaterTablePolylineMustRiseInXAndHaveTwoVertices) {
+  const std::string text = water_table::with_table("{polyline: [[0, 8], [20, 8], [15, 2]]}");
+  const InputError error = read_error(text);
+  EXPECT_EQ(error.location().file, kFile);
+  EXPECT_EQ(error.location().line, position_of(text, "water_table:").line);
+  EXPECT_EQ(error.key(), "pore_fluid.water_table.polyline.2");
+  EXPECT_EQ(error.value(), "[15, 2]");
+  EXPECT_NE(error.allowed().find("x strictly increasing"), std::string::npos) << error.what();
+  EXPECT_NE(error.problem().find("x = 15"), std::string::npos) << error.what();
+  const InputError single = read_error(water_table::with_table("{polyline: [[0, 8]]}"));
+  EXPECT_EQ(single.key(), "pore_fluid.water_table.polyline");
+  const InputError bad_density =
+      read_error(water_table::with_table("{level: 3, density_above: -1}"));
+  EXPECT_EQ(bad_density.key(), "pore_fluid.water_table.density_above");
+  EXPECT_EQ(bad_density.value(), "-1");
+  EXPECT_NE(bad_density.allowed().find("> 0"), std::string::npos) << bad_density.what();
+  const InputError unknown = read_error(water_table::with_table("{levl: 3}"));
+  EXPECT_EQ(unknown.key(), "pore_fluid.water_table.levl");
+  EXPECT_NE(std::string(unknown.what()).find("level"), std::string::npos) << unknown.what();
+}
+
 }  // namespace
 }  // namespace rktsph

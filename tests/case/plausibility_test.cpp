@@ -132,5 +132,31 @@ TEST(Plausibility, ATimeStepLongerThanTheOutputIntervalOrTheRunIsFlagged) {
   EXPECT_NE(warnings[0].text.find("single step"), std::string::npos) << warnings[0].to_string();
 }
 
+// The column saturated, with the water table `table` (docs/theory.md §6.8).
+std::string saturated_column(const std::string& table) {
+  std::string text = replaced(kColumn, "name: column\n", "name: column\nmodel: saturated_vpw\n");
+  return text +
+         "pore_fluid: {bulk_modulus: 2.2e9, density: 1000, porosity: 0.4, "
+         "hydraulic_conductivity: 1.0e-4, water_table: " +
+         table + "}\n";
+}
+
+TEST(Plausibility, AWaterTableInOrAboveTheBodyIsNotFlagged) {
+  EXPECT_TRUE(warnings_of(saturated_column("{level: 5}")).empty());
+  EXPECT_TRUE(warnings_of(saturated_column("{level: 15}")).empty());  // a submerged body
+}
+
+TEST(Plausibility, AWaterTableBelowTheBodyAndAnImplausibleDensityAboveAreFlagged) {
+  const std::vector<CaseWarning> below = warnings_of(saturated_column("{level: -1}"));
+  ASSERT_EQ(below.size(), 1u);
+  EXPECT_EQ(below[0].key, "pore_fluid.water_table");
+  EXPECT_NE(below[0].text.find("dry"), std::string::npos) << below[0].to_string();
+  const std::vector<CaseWarning> light =
+      warnings_of(saturated_column("{level: 5, density_above: 1.8}"));
+  ASSERT_EQ(light.size(), 1u);
+  EXPECT_EQ(light[0].key, "pore_fluid.water_table.density_above");
+  EXPECT_NE(light[0].text.find("kg/m^3"), std::string::npos) << light[0].to_string();
+}
+
 }  // namespace
 }  // namespace rktsph

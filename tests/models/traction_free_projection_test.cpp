@@ -178,7 +178,7 @@ TEST(DrySolidProjection, AxisNormalsReproduceTheLatticeClosedForm) {
 
 TEST(SaturatedVpwProjection, ActsOnTheEffectiveStressOnly) {
   const SaturatedVpw model(Kinematics::PlaneStrain, one_material(), Loads{}, SourceIntegration{},
-                           PoreFluid{1.0, 1e-9, 1e-6, 1000.0});
+                           PoreFluid{1.0, 1e-9, 1e-6, 1000.0, 0.3, std::nullopt});
   Point point = loaded_point(model);
   const int pore = model.pore_pressure_field();
   point.values(pore, 0) = 3.0e4;

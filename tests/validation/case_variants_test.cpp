@@ -164,6 +164,26 @@ TEST(CaseVariant, SlopeElasticAtAnotherPoissonRatioAndDensity) {
     EXPECT_TRUE(check.passed) << check.name << " " << check.value;
 }
 
+// The water table higher, a given density above it, alpha < 1 and another nu: the closed form
+// follows the case (docs/theory.md eq. 8.8), and the run is lengthened to drain the deeper layer.
+TEST(CaseVariant, WaterTableAtAnotherLevelDensityAndBiotCoefficient) {
+  const OneThread one_thread;
+  const ValidationResult result =
+      run_named("vpw-water-table", quick_context({{"pore_fluid.water_table.level", "7.5"},
+                                                  {"pore_fluid.water_table.density_above", "1800"},
+                                                  {"pore_fluid.biot_coefficient", "0.9"},
+                                                  {"materials.soil.poisson_ratio", "0.25"}}));
+  ASSERT_TRUE(result.error.empty()) << result.error;
+  for (const CheckResult& check : result.checks)
+    EXPECT_TRUE(check.passed) << check.name << " " << check.value;
+}
+
+TEST(CaseShape, WaterTableCaseNeedsALevelInsideTheLayer) {
+  const ValidationResult result =
+      run_named("vpw-water-table", quick_context({{"pore_fluid.water_table.level", "-1"}}));
+  EXPECT_NE(result.error.find("not above the base"), std::string::npos) << result.error;
+}
+
 // nu = 0.45: K0 = 0.818 against the bundled 0.429, where k0_error measured 0.90. The full lattice
 // (10 cells over H in the quick variant give 0.033). vertical_stress_error is left out: it is the
 // face's relief of the overburden 2H behind it, which grows with K0 (0.027 at nu = 0.45 on both

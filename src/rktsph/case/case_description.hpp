@@ -153,6 +153,17 @@ inline const std::vector<std::pair<std::string, PressurePreconditioner>>& precon
   return words;
 }
 
+/// A phreatic surface of the saturated model (docs/theory.md §6.8): a level, or a polyline of
+/// the surface's height y_w(x), held constant beyond its end vertices. Below it the pore water is
+/// hydrostatic, above it the soil is drained and weighs `density_above`.
+struct WaterTableSpec {
+  std::optional<double> level;                  ///< y_w of a horizontal table [m]
+  std::vector<std::array<double, 2>> polyline;  ///< (x, y_w) vertices, x increasing (2D) [m]
+  /// Mass density of the soil above the table [kg/m^3]; unset: rho - n rho_w of each material.
+  std::optional<double> density_above;
+  SourceLocation where;
+};
+
 /// Pore water and the pressure solve of the saturated v-pw model (docs/theory.md §6).
 struct PoreFluidSpec {
   double bulk_modulus = 2.2e9;          ///< K_w [Pa]
@@ -163,10 +174,11 @@ struct PoreFluidSpec {
   double biot_coefficient = 1.0;        ///< alpha
   double projection_beta = 1.0;         ///< incremental projection (1) or not (0)
   PressurePreconditioner preconditioner = PressurePreconditioner::Multigrid;
-  double solver_tolerance = 1e-8;           ///< relative residual of the conjugate gradient
-  long solver_max_iterations = 0;           ///< 0: twice the number of nodes
-  double laplacian_scale = 0.0;             ///< 0: computed so that L(|x|^2) = 2d in the interior
-  double checkerboard_stabilisation = 0.0;  ///< theta of the p_w checkerboard term (theory §6.6)
+  double solver_tolerance = 1e-8;             ///< relative residual of the conjugate gradient
+  long solver_max_iterations = 0;             ///< 0: twice the number of nodes
+  double laplacian_scale = 0.0;               ///< 0: computed so that L(|x|^2) = 2d in the interior
+  double checkerboard_stabilisation = 0.0;    ///< theta of the p_w checkerboard term (theory §6.6)
+  std::optional<WaterTableSpec> water_table;  ///< none: fully saturated, p_w the excess only
   SourceLocation where;
 };
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 
@@ -100,6 +101,54 @@ void check_pore_fluid(const CaseDescription& description, std::vector<CaseWarnin
     warnings.push_back(std::move(*warning));
 }
 
+// The water table (docs/theory.md §6.8) against the body's vertical extent: a table above the
+// body is allowed (a submerged body, every node saturated) and gets no warning; one below the
+// body leaves it dry, drained throughout, which is most likely a table given in the wrong frame.
+void check_water_table(const CaseDescription& description, std::vector<CaseWarning>& warnings) {
+  if (!description.pore_fluid || !description.pore_fluid->water_table) return;
+  const WaterTableSpec& table = *description.pore_fluid->water_table;
+  const PoreFluidSpec& fluid = *description.pore_fluid;
+  const auto vertical = static_cast<std::size_t>(description.dimension - 1);
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const ShapeSpec& shape : description.geometry.shapes)
+    for (const Vec3& vertex : shape.vertices)
+      lowest = std::min(lowest, vertex[vertical]);
+  double highest_table = table.level.value_or(-std::numeric_limits<double>::infinity());
+  for (const auto& vertex : table.polyline)
+    highest_table = std::max(highest_table, vertex[1]);
+  if (std::isfinite(lowest) && highest_table <= lowest)
+    warnings.push_back({table.where, "pore_fluid.water_table", number_text(highest_table),
+                        fmt::format("at or below the lowest point of the body ({} m): the body "
+                                    "is dry, drained throughout, and carries no pore pressure",
+                                    number_text(lowest))});
+  if (table.density_above) {
+    const PlausibleRange above = {"density_above",
+                                  "kg/m^3",
+                                  900.0,
+                                  3500.0,
+                                  "densities of soils and rocks",
+                                  10.0,
+                                  "given in t/m^3 or g/cm^3? the unit is kg/m^3 (2 t/m^3 = 2000 "
+                                  "kg/m^3)"};
+    if (auto warning = out_of_range(above, "pore_fluid.water_table.density_above",
+                                    Parameter{*table.density_above, table.where}))
+      warnings.push_back(std::move(*warning));
+  } else {
+    // The default rho - n rho_w must stay a density: a porosity and mixture density that leave
+    // the drained soil lighter than water are most likely a mistake in one of them.
+    for (const auto& [name, block] : description.materials) {
+      const auto found = block.values.find("density");
+      if (found == block.values.end()) continue;
+      const double drained = found->second.value - fluid.porosity * fluid.density;
+      if (drained < 900.0)
+        warnings.push_back({table.where, "pore_fluid.water_table", "density_above unset",
+                            fmt::format("the drained density of material '{}' above the table, "
+                                        "rho - n rho_w = {} kg/m^3, is below those of soils",
+                                        name, number_text(drained))});
+    }
+  }
+}
+
 /// The time at which `function` first takes its full value, if it is a ramp or a step.
 std::optional<double> full_value_time(const TimeFunction& function) {
   if (function.kind == TimeFunction::Kind::LinearRamp) return function.start + function.duration;
@@ -181,6 +230,7 @@ std::vector<CaseWarning> plausibility_warnings(const CaseDescription& descriptio
   std::vector<CaseWarning> warnings;
   check_materials(description, warnings);
   check_pore_fluid(description, warnings);
+  check_water_table(description, warnings);
   check_loads_within_run(description, warnings);
   check_time_step(description, time_step, warnings);
   std::stable_sort(warnings.begin(), warnings.end(), earlier);

@@ -226,7 +226,8 @@ void DrySolid::flux_rate(std::span<const std::int32_t> material, const FieldArra
 }
 
 void DrySolid::advance_velocities(std::int64_t n, const FieldArray& rate, double time,
-                                  double interval, FieldArray& values) const {
+                                  double interval, FieldArray& values,
+                                  const FieldArray& internal) const {
   // v' = R_v + b(t) - xi(t) v, classical RK4 with sub-steps when xi * interval is large. The loads
   // are the same for every node: evaluated once per sub-step before the node loop, which then
   // does each node's sub-steps in one pass (the arithmetic of a node-by-node evaluation).
@@ -246,6 +247,10 @@ void DrySolid::advance_velocities(std::int64_t n, const FieldArray& rate, double
         {loads_.body_force(t0), loads_.body_force(t0 + 0.5 * delta), loads_.body_force(t0 + delta)},
         {loads_.damping_at(t0), loads_.damping_at(t0 + 0.5 * delta),
          loads_.damping_at(t0 + delta)}};
+  }
+  if (body_force_weight_ >= 0) {
+    advance_weighted_velocities(n, rate, delta, substeps, interval, values, internal);
+    return;
   }
   for (int a = 0; a < d; ++a) {
     const auto axis = static_cast<std::size_t>(a);
@@ -269,13 +274,53 @@ void DrySolid::advance_velocities(std::int64_t n, const FieldArray& rate, double
   }
 }
 
+void DrySolid::advance_weighted_velocities(std::int64_t n, const FieldArray& rate, double delta,
+                                           int substeps, double interval, FieldArray& values,
+                                           const FieldArray& internal) const {
+  // advance_velocities with the body force of each point scaled by its weights (eq. 6.8): the
+  // vertical component by w, and in 2D s times it added along x (a sloping water table's seepage
+  // force). The loads of the sub-steps are those advance_velocities evaluated.
+  const int d = dimension();
+  const auto vertical = static_cast<std::size_t>(d - 1);
+  const double* weight = internal.field(body_force_weight_);
+  const double* seepage = d == 2 ? internal.field(body_force_weight_ + 1) : nullptr;
+  const bool frozen = integration_.frozen_flux;
+  const std::vector<SubstepLoads>& loads = substep_loads_;
+  for (int a = 0; a < d; ++a) {
+    const auto axis = static_cast<std::size_t>(a);
+    double* velocity = values.field(layout_.velocity(a));
+    const double* rate_v = rate.field(layout_.velocity(a));
+#pragma omp parallel for schedule(static) if (n > kParallelThreshold)
+    for (std::int64_t i = 0; i < n; ++i) {
+      // body_a = scale b_a + cross b_y
+      const double scale = axis == vertical ? weight[i] : 1.0;
+      const double cross = axis == vertical ? 0.0 : seepage[i];
+      double v = velocity[i];
+      const double r = frozen ? rate_v[i] : 0.0;
+      for (int s = 0; s < substeps; ++s) {
+        const SubstepLoads& l = loads[static_cast<std::size_t>(s)];
+        double body[3];
+        for (std::size_t k = 0; k < 3; ++k)
+          body[k] = scale * l.body[k][axis] + cross * l.body[k][vertical];
+        const double k1 = r + body[0] - l.damping[0] * v;
+        const double k2 = r + body[1] - l.damping[1] * (v + 0.5 * delta * k1);
+        const double k3 = r + body[1] - l.damping[1] * (v + 0.5 * delta * k2);
+        const double k4 = r + body[2] - l.damping[2] * (v + delta * k3);
+        v += delta / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+      }
+      if (!frozen) v += interval * rate_v[i];
+      velocity[i] = v;
+    }
+  }
+}
+
 void DrySolid::advance(std::span<const std::int32_t> material, const FieldArray& rate, double time,
                        double interval, FieldArray& values, FieldArray& internal,
                        AdvancedFields part) const {
   const auto n = static_cast<std::int64_t>(material.size());
   const int ns = layout_.stress_count();
   const int nk = internal_count_;
-  if (part != AdvancedFields::Others) advance_velocities(n, rate, time, interval, values);
+  if (part != AdvancedFields::Others) advance_velocities(n, rate, time, interval, values, internal);
   if (part == AdvancedFields::Velocity) return;
 #pragma omp parallel for schedule(static) if (n > kParallelThreshold)
   for (std::int64_t i = 0; i < n; ++i) {

@@ -90,6 +90,11 @@ class DrySolid : public PhysicsModel {
   DrySolid(Kinematics kinematics, std::vector<std::unique_ptr<Material>> materials, Loads loads,
            SourceIntegration integration, bool pore_pressure);
 
+  /// The internal variables that scale the body force point by point (a water table, docs/theory.md
+  /// eq. 6.8): b_i = (b_x + s_i b_y, w_i b_y) in 2D, w_i b_x in 1D, with w the internal variable
+  /// `weight` and s the one after it (2D). -1: the body force is the same at every point.
+  void set_body_force_weights(int weight) { body_force_weight_ = weight; }
+
  private:
   static constexpr int kMaxStress = KinematicAssumption::kMaxStress;
 
@@ -108,7 +113,11 @@ class DrySolid : public PhysicsModel {
   mutable std::vector<SubstepLoads> substep_loads_;
   /// The velocity part of advance(), points [0, n) of `values`.
   void advance_velocities(std::int64_t n, const FieldArray& rate, double time, double interval,
-                          FieldArray& values) const;
+                          FieldArray& values, const FieldArray& internal) const;
+  /// Its loop with the body force weighted point by point (set_body_force_weights).
+  void advance_weighted_velocities(std::int64_t n, const FieldArray& rate, double delta,
+                                   int substeps, double interval, FieldArray& values,
+                                   const FieldArray& internal) const;
   // n (x) n as an engineering strain on the carried components.
   void normal_strain(const std::array<double, 3>& normal, double* strain) const;
   // Engineering strain rate of every carried component at point i (docs/theory.md eq. 1.4).
@@ -126,7 +135,8 @@ class DrySolid : public PhysicsModel {
   Loads loads_;
   SourceIntegration integration_;
   std::vector<std::string> internal_names_;
-  int internal_count_ = 0;
+  int internal_count_ = 0;  // of the materials; a derived model may carry more after them
+  int body_force_weight_ = -1;
   std::vector<StiffnessMatrix> stiffness_;   // of each material
   std::vector<StiffnessMatrix> compliance_;  // its inverse
   // The stress update of each material (the source, its sub-steps and the tension cut-off): the

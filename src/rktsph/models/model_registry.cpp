@@ -1,5 +1,7 @@
 #include "rktsph/models/model_registry.hpp"
 
+#include <fmt/format.h>
+
 #include <stdexcept>
 
 #include "rktsph/models/dry_large_deformation.hpp"
@@ -47,13 +49,34 @@ std::unique_ptr<PhysicsModel> create_dry_large_deformation(
                                                integration_of(description.numerics));
 }
 
+// A water table is a level surface of the hydrostatic pore pressure under gravity along -y (-x
+// in 1D), the vertical axis of its heights (docs/theory.md §6.8).
+void check_water_table_gravity(const CaseDescription& description) {
+  const int d = description.dimension;
+  const WaterTableSpec& table = *description.pore_fluid->water_table;
+  const Vec3 g = description.gravity ? description.gravity->acceleration : Vec3{};
+  bool vertical = g[static_cast<std::size_t>(d - 1)] < 0.0;
+  for (int a = 0; a < d - 1; ++a)
+    vertical = vertical && g[static_cast<std::size_t>(a)] == 0.0;
+  if (!vertical)
+    throw InputError(
+        table.where, "pore_fluid.water_table",
+        description.gravity ? fmt::format("gravity ({}, {})", g[0], g[1]) : "no gravity",
+        "a water table needs gravity along the vertical axis, downward",
+        d == 2 ? "loads.gravity.acceleration: [0, -g]" : "loads.gravity.acceleration: -g");
+}
+
 std::unique_ptr<PhysicsModel> create_saturated_vpw(
     const CaseDescription& description, std::vector<std::unique_ptr<Material>> materials) {
   const PoreFluidSpec& fluid = *description.pore_fluid;
   // 1/Q = n/K_w (incompressible grains), k_bar = k/(rho_w g) (docs/theory.md §6.1).
-  const PoreFluid pore{fluid.biot_coefficient, fluid.porosity / fluid.bulk_modulus,
+  const PoreFluid pore{fluid.biot_coefficient,
+                       fluid.porosity / fluid.bulk_modulus,
                        fluid.hydraulic_conductivity / (fluid.density * fluid.gravity),
-                       fluid.density};
+                       fluid.density,
+                       fluid.porosity,
+                       fluid.water_table};
+  if (fluid.water_table) check_water_table_gravity(description);
   return std::make_unique<SaturatedVpw>(kinematics_of(description), std::move(materials),
                                         loads_of(description), integration_of(description.numerics),
                                         pore);

@@ -224,8 +224,11 @@ void FieldSeriesWriter::write(const Simulation& simulation, const State& state) 
       fields.push_back(field);
     } else if (name == "total_stress") {
       // sigma = sigma' - alpha p_w I (docs/theory.md §1.1).
+      // With a water table p_w is the hydrostatic p_h plus the carried excess (eq. 6.7).
       const double alpha = model.biot_coefficient();
-      const double* pore = state.fields.field(model.pore_pressure_field());
+      const double* pore = model.has_water_table()
+                               ? computed(find_quantity(simulation, "pore_pressure"))
+                               : state.fields.field(model.pore_pressure_field());
       PointField field{name, 9, {}};
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {

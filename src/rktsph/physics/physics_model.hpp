@@ -57,6 +57,14 @@ class PhysicsModel {
   /// Biot coefficient alpha of the saturated model (0 for a dry one): total stress
   /// sigma = sigma' - alpha p_w I.
   virtual double biot_coefficient() const { return 0.0; }
+  /// True if the pore pressure has a water table (docs/theory.md §6.8): the carried field is then
+  /// the excess over the hydrostatic p_h, and p_w = p_h + the field.
+  virtual bool has_water_table() const { return false; }
+  /// p_h [Pa] at SPH node `node` and time `time` (eq. 6.6); 0 without a water table.
+  virtual double hydrostatic_pore_pressure(std::size_t node, double time) const {
+    (void)node, (void)time;
+    return 0.0;
+  }
 
   /// Largest wave speed of the model [m/s] (the drained P-wave speed), for the Courant rule.
   virtual double max_wave_speed() const = 0;

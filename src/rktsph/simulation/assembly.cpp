@@ -10,6 +10,7 @@
 #include "rktsph/geometry/triangle_mesher.hpp"
 #include "rktsph/materials/material_factory.hpp"
 #include "rktsph/mesh/cell_geometry.hpp"
+#include "rktsph/models/saturated_vpw.hpp"
 #include "rktsph/sph/cell_stencils.hpp"
 
 namespace rktsph {
@@ -356,6 +357,50 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
   initialise_state();
 }
 
+namespace {
+// The heights of the soil each SPH node stands for: y -+ dx/2, cut at y on a side with no cell
+// (a node of the top or bottom surface stands for soil on one side only).
+std::vector<std::array<double, 2>> vertical_spans(const NodeSets& nodes) {
+  const int d = nodes.dimension;
+  const auto vertical = static_cast<std::size_t>(d - 1);
+  const std::vector<double>& height = nodes.sph_nodes.position[vertical];
+  std::vector<std::array<char, 2>> sides(nodes.sph_nodes.size(), {0, 0});  // below, above
+  for (std::size_t p = 0; p < nodes.cells.cell_count(); ++p) {
+    const auto corners = nodes.cells.corners(p);
+    double centre = 0.0;
+    for (const std::int32_t node : corners)
+      centre += height[static_cast<std::size_t>(node)] / static_cast<double>(corners.size());
+    for (const std::int32_t node : corners) {
+      const double y = height[static_cast<std::size_t>(node)];
+      if (centre < y - 1e-9 * nodes.spacing) sides[static_cast<std::size_t>(node)][0] = 1;
+      if (centre > y + 1e-9 * nodes.spacing) sides[static_cast<std::size_t>(node)][1] = 1;
+    }
+  }
+  std::vector<std::array<double, 2>> spans(sides.size());
+  for (std::size_t i = 0; i < spans.size(); ++i)
+    spans[i] = {height[i] - (sides[i][0] ? 0.5 * nodes.spacing : 0.0),
+                height[i] + (sides[i][1] ? 0.5 * nodes.spacing : 0.0)};
+  return spans;
+}
+
+// The mass per unit area above SPH node i of a column of its material from the ground surface
+// down, each part at the density its body force carries (eq. 6.9): rho_above over the dry part
+// above the water table, rho - alpha rho_w over the part below it. Times g_y it is sigma'_v.
+double effective_overburden_mass(const SaturatedVpw& model, std::int32_t material,
+                                 const PointCloud& sph_nodes, std::size_t i, double surface) {
+  const int d = model.dimension();
+  const double x = d == 2 ? sph_nodes.position[0][i] : 0.0;
+  const double y = sph_nodes.position[static_cast<std::size_t>(d - 1)][i];
+  const double table = model.water_table()->height(x);
+  const double density = model.material(material).density();
+  const double dry = std::max(0.0, surface - std::max(y, table));
+  const double wet = std::max(0.0, std::min(surface, table) - y);
+  const std::array<double, 2> above = model.body_force_weights(material, x, table + 1.0);
+  const std::array<double, 2> below = model.body_force_weights(material, x, table - 1.0);
+  return density * (above[0] * dry + below[0] * wet);
+}
+}  // namespace
+
 void Assembly::initialise_state() {
   const std::size_t n = nodes_.sph_nodes.size();
   const int d = description_.dimension;
@@ -370,8 +415,14 @@ void Assembly::initialise_state() {
       state_.fields(model_->velocity_field(a), i) = description_.initial.velocity[a];
     model_->initial_internal(nodes_.node_material[i], state_.internal, i);
   }
+  auto* saturated = dynamic_cast<SaturatedVpw*>(model_.get());
+  const bool water_table = saturated && saturated->has_water_table();
+  if (water_table)
+    saturated->place_water_table(nodes_.sph_nodes, nodes_.node_material, vertical_spans(nodes_),
+                                 state_.internal);
   if (description_.initial.geostatic_surface) {
-    // sigma_v = rho g_y (surface - y) (g_y < 0 gives compression), sigma_h = K0 sigma_v.
+    // sigma_v = rho g_y (surface - y) (g_y < 0 gives compression), sigma_h = K0 sigma_v; with a
+    // water table the effective overburden of eq. 6.9 instead.
     const double surface = *description_.initial.geostatic_surface;
     const double g_vertical =
         description_.gravity ? description_.gravity->acceleration[d - 1] : 0.0;
@@ -380,7 +431,10 @@ void Assembly::initialise_state() {
       const double nu = material.elastic().poisson_ratio;
       const double k0 = description_.initial.k0.value_or(nu / (1.0 - nu));
       const double depth = surface - nodes_.sph_nodes.position[d - 1][i];
-      const double vertical = material.density() * g_vertical * depth;
+      const double vertical =
+          water_table ? g_vertical * effective_overburden_mass(*saturated, nodes_.node_material[i],
+                                                               nodes_.sph_nodes, i, surface)
+                      : material.density() * g_vertical * depth;
       state_.fields(model_->stress_field(d - 1, d - 1), i) = vertical;
       for (int a = 0; a < d - 1; ++a)
         state_.fields(model_->stress_field(a, a), i) = k0 * vertical;

@@ -94,6 +94,11 @@ EnergyRates measure_energy(const Simulation& simulation) {
   const double xi = model.damping(state.time);
   const int internal_count = state.internal.field_count();
   std::array<double, 16> internal{};
+  // With a water table each node's body force is weighted (docs/theory.md eq. 6.8).
+  const auto& names = model.internal_names();
+  const auto weight_name = std::find(names.begin(), names.end(), "gravity_weight");
+  const int weight =
+      weight_name == names.end() ? -1 : static_cast<int>(weight_name - names.begin());
   EnergyRates rates;
   for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i) {
     const std::int32_t material = nodes.node_material[i];
@@ -103,7 +108,12 @@ EnergyRates measure_energy(const Simulation& simulation) {
     for (int a = 0; a < d; ++a) {
       const double v = values(model.velocity_field(a), i);
       speed2 += v * v;
-      body += b[static_cast<std::size_t>(a)] * v;
+      if (weight < 0)
+        body += b[static_cast<std::size_t>(a)] * v;
+      else if (a == d - 1)
+        body += state.internal(weight, i) * b[static_cast<std::size_t>(a)] * v;
+      else  // the seepage weight s, after w (2D)
+        body += (b[0] + state.internal(weight + 1, i) * b[1]) * v;
     }
     rates.kinetic += 0.5 * mass * speed2;
     rates.body_power += mass * body;

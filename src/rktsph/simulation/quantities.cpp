@@ -11,6 +11,13 @@ namespace rktsph {
 NodeQuantity find_quantity(const Simulation& simulation, const std::string& name) {
   const PhysicsModel& model = simulation.model();
   const auto& fields = model.field_names();
+  const int pore = model.pore_pressure_field();
+  // With a water table the carried field is the excess: p_w = p_h + it (docs/theory.md eq. 6.7).
+  const auto pore_pressure = [&model, pore](const State& s, std::size_t i) {
+    return s.fields(pore, i) + model.hydrostatic_pore_pressure(i, s.time);
+  };
+  if (pore >= 0 && model.has_water_table() && fields[static_cast<std::size_t>(pore)] == name)
+    return pore_pressure;
   for (std::size_t f = 0; f < fields.size(); ++f)
     if (fields[f] == name) {
       const int field = static_cast<int>(f);
@@ -28,10 +35,14 @@ NodeQuantity find_quantity(const Simulation& simulation, const std::string& name
   for (int i = 0; i < 3; ++i)
     for (int j = i; j < 3; ++j) {
       if (name != std::string("total_stress_") + axis_letter(i) + axis_letter(j)) continue;
-      const int field = model.stress_field(i, j), pore = model.pore_pressure_field();
+      const int field = model.stress_field(i, j);
       if (pore < 0) return {};
       const double alpha = model.biot_coefficient();
       const double diagonal = i == j ? 1.0 : 0.0;
+      if (model.has_water_table())
+        return [field, pore_pressure, alpha, diagonal](const State& s, std::size_t k) {
+          return (field >= 0 ? s.fields(field, k) : 0.0) - diagonal * alpha * pore_pressure(s, k);
+        };
       return [field, pore, alpha, diagonal](const State& s, std::size_t k) {
         return (field >= 0 ? s.fields(field, k) : 0.0) - diagonal * alpha * s.fields(pore, k);
       };

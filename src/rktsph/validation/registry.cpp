@@ -32,6 +32,8 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_vpw_localization},
       {"vpw-vertical-cut-footing", "footing on a saturated vertical cut, undrained limit (6.4.6)",
        &validate_vpw_vertical_cut_footing},
+      {"vpw-water-table", "saturated layer with a water table at mid-depth at rest (I30)",
+       &validate_vpw_water_table},
       {"strip-footing-elastic", "flexible strip load on a dry elastic stratum against Flamant",
        &validate_strip_footing_elastic},
       {"triangles-slope-elastic", "2:1 elastic slope on a triangle mesh, ramped gravity (I28)",

@@ -23,6 +23,7 @@ std::vector<CheckResult> validate_vpw_strip_footing_elastic(const ValidationCont
 std::vector<CheckResult> validate_vpw_strip_footing_plastic(const ValidationContext& context);
 std::vector<CheckResult> validate_vpw_localization(const ValidationContext& context);
 std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationContext& context);
+std::vector<CheckResult> validate_vpw_water_table(const ValidationContext& context);
 std::vector<CheckResult> validate_strip_footing_elastic(const ValidationContext& context);
 std::vector<CheckResult> validate_hanging_beam(const ValidationContext& context);
 std::vector<CheckResult> validate_ld_bar1d_elastic(const ValidationContext& context);

@@ -4,6 +4,11 @@
 #include "rktsph/case/sections/sections.hpp"
 #include "rktsph/case/sections/value_readers.hpp"
 
+#include <fmt/format.h>
+
+#include <array>
+#include <vector>
+
 namespace rktsph {
 
 namespace {
@@ -16,6 +21,67 @@ NumberRange biot_range() {
 }
 NumberRange tolerance_range() {
   return {0.0, 1e-3, true, false};
+}
+
+// The polyline of a water table: two or more [x, y] vertices with x strictly increasing, so that
+// it is a height y_w(x) (docs/theory.md §6.8).
+std::vector<std::array<double, 2>> read_table_polyline(const YamlNode& node, int dimension) {
+  reject_unless_2d(node, dimension, "'polyline' is");
+  std::vector<std::array<double, 2>> vertices;
+  for (const YamlNode& item : to_sequence(node, 2)) {
+    const Vec3 vertex = read_vector(item, 2);
+    if (!vertices.empty() && vertex[0] <= vertices.back()[0])
+      fail_at(item,
+              fmt::format("x = {} does not come after the previous vertex's x = {}", vertex[0],
+                          vertices.back()[0]),
+              "vertices [x, y] with x strictly increasing (the table is a height y(x))");
+    vertices.push_back({vertex[0], vertex[1]});
+  }
+  return vertices;
+}
+
+const KeyTable<WaterTableSpec>& water_table_keys() {
+  using W = WaterTableSpec;
+  static const KeyTable<WaterTableSpec> keys = {
+      optional_number_key<W>("level", &W::level, NumberRange::any(), "m",
+                             "one of level and polyline",
+                             "y of a horizontal water table (x in 1D)."),
+      Key<W>{"polyline", "list of [x, y]", "m", "one of level and polyline",
+             "2 or more vertices, x strictly increasing; 2D only",
+             "The water table's height y(x), constant beyond the end vertices.", false,
+             [](const YamlNode& node, W& table, Reading& reading) {
+               table.polyline = read_table_polyline(node, reading.so_far.dimension);
+             },
+             [](YAML::Emitter& out, const W& table, const CaseDescription&) {
+               if (table.polyline.empty()) return;
+               out << YAML::Key << "polyline" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+               for (const auto& vertex : table.polyline)
+                 out << YAML::Flow << YAML::BeginSeq << number(vertex[0]) << number(vertex[1])
+                     << YAML::EndSeq;
+               out << YAML::EndSeq;
+             }},
+      optional_number_key<W>("density_above", &W::density_above, NumberRange::positive(), "kg/m³",
+                             "ρ − n ρ_w of each material",
+                             "Mass density of the soil above the table (drained pores)."),
+  };
+  return keys;
+}
+
+void read_water_table(const YamlNode& node, PoreFluidSpec& fluid, Reading& reading) {
+  WaterTableSpec table;
+  table.where = YamlMap(node).where();
+  const std::size_t errors_before = reading.errors.size();
+  read_keys(node, water_table_keys(), table, reading);
+  // A misspelt or refused key is reported once, not again as a missing shape.
+  if (reading.errors.size() > errors_before) return;
+  const YamlMap map(node);
+  const bool level = map.find("level") != nullptr, polyline = map.find("polyline") != nullptr;
+  if (level == polyline) {
+    fail_at(level ? *map.find("polyline") : node,
+            level ? "both 'level' and 'polyline' are given" : "neither 'level' nor 'polyline'",
+            "exactly one of level: y and polyline: [[x, y], ...]", level);
+  }
+  fluid.water_table = table;
 }
 
 const KeyTable<PoreFluidSpec>& pore_fluid_keys() {
@@ -72,6 +138,16 @@ const KeyTable<PoreFluidSpec>& pore_fluid_keys() {
       number_key<P>("checkerboard_stabilisation", &P::checkerboard_stabilisation,
                     NumberRange::non_negative(), "–",
                     "θ of the pore-pressure checkerboard stabilisation (docs/theory.md §6.6)."),
+      Key<P>{"water_table", "map", "", "none (fully saturated)", "",
+             "A phreatic surface: hydrostatic p_w below it, drained soil above it "
+             "(docs/theory.md §6.8).",
+             false, read_water_table,
+             [](YAML::Emitter& out, const P& fluid, const CaseDescription& description) {
+               if (!fluid.water_table) return;
+               out << YAML::Key << "water_table" << YAML::Value << YAML::BeginMap;
+               emit_keys(out, water_table_keys(), *fluid.water_table, description);
+               out << YAML::EndMap;
+             }},
   };
   return keys;
 }
@@ -103,6 +179,7 @@ Key<CaseDescription> pore_fluid_section() {
 
 void declare_pore_fluid_keys(std::vector<DeclaredKey>& list) {
   declare(list, "pore_fluid.", pore_fluid_keys());
+  declare(list, "pore_fluid.water_table.", water_table_keys());
 }
 
 }  // namespace rktsph
