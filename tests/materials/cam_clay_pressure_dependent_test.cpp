@@ -1,5 +1,5 @@
 // Modified Cam-Clay with pressure-dependent elasticity, K = (1 + e0) p / kappa_c (docs/theory.md
-// §1.5, eqs. 1.11–1.13), on a single material point driven by the point driver, against the
+// §1.5, eqs. 1.10a–1.10c), on a single material point driven by the point driver, against the
 // closed forms of critical-state soil mechanics (validation/references/critical_state.hpp):
 //   - isotropic unloading follows the e-ln p swelling line, ln(p / p0) = -(1 + e0) eps_v / kappa;
 //   - undrained (isochoric) triaxial and plane-strain compression of normally and lightly
@@ -150,7 +150,10 @@ TEST(CamClayPressureDependent, DrainedTriaxialCompressionReachesCriticalStateOfC
   for (const double ocr : {1.0, 1.5}) {
     const double p0 = kPreconsolidation / ocr;
     const double expected = references::drained_triaxial_failure_pressure(p0, ratio);
-    const Failure f = drive_to_failure(clay, StrainPath::uniaxial_stress(-kStrainRate, 400.0), p0);
+    // The drained path nears the critical state slowly (hardening stops only as q/p -> M):
+    // q / (M p) = 0.956 at 30 % axial strain, 0.992 at 50 %, 0.9995 at 80 % (measured), so the
+    // path is driven to 80 % (a nominal small strain: e is held at e0).
+    const Failure f = drive_to_failure(clay, StrainPath::uniaxial_stress(-kStrainRate, 800.0), p0);
     EXPECT_NEAR(f.ratio, ratio, 1e-12);  // triaxial compression: theta = +30 degrees
     EXPECT_NEAR(f.pressure / expected, 1.0, 1e-3) << "OCR " << ocr;
     EXPECT_NEAR(f.q / (ratio * f.pressure), 1.0, 1e-3) << "OCR " << ocr;

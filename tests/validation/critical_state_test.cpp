@@ -19,9 +19,9 @@ TEST(CriticalStateReference, UnloadingLineIsStraightInLogPressure) {
   const double p0 = 2.0e5, e0 = 0.9, kappa = 0.04, strain = 3.0e-3;
   const double p = isotropic_unloading_pressure(p0, strain, e0, kappa);
   // Swelling: tension-positive volumetric strain lowers p; the void ratio change
-  // de = -(1 + e0) eps_v equals -kappa ln(p / p0).
+  // de = (1 + e0) eps_v equals -kappa ln(p / p0).
   EXPECT_LT(p, p0);
-  EXPECT_NEAR(-(1.0 + e0) * strain, -kappa * std::log(p / p0), 1e-12);
+  EXPECT_NEAR((1.0 + e0) * strain, -kappa * std::log(p / p0), 1e-12);
   EXPECT_DOUBLE_EQ(isotropic_unloading_pressure(p0, 0.0, e0, kappa), p0);
 }
 

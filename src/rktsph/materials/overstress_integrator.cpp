@@ -106,7 +106,7 @@ void OverstressIntegrator::integrate_stress_dependent(const double* rate_sigma, 
   double y[kMaxStress + kMaxInternal], stage[kMaxStress + kMaxInternal];
   double k[4][kMaxStress + kMaxInternal];
   double* const slopes[4] = {k[0], k[1], k[2], k[3]};
-  // eq. 1.13: sigma' = D(sigma) : (eps_dot - eps_dot^vp); eps_dot is frozen over the interval as
+  // eq. 1.10c: sigma' = D(sigma) : (eps_dot - eps_dot^vp); eps_dot is frozen over the interval as
   // R_sigma is in integrate() (docs/theory.md §2.8).
   auto evaluate = [&](double, const double* state, double* slope) {
     const SymmetricTensor current = full_stress(state);

@@ -118,7 +118,7 @@ class OverstressIntegrator {
   /// integrate() for stress-dependent elasticity: the flux rate is D : eps_dot with D of
   /// elastic(), so eps_dot = D^-1 R_sigma is recovered and
   ///   sigma' = D(sigma) : (eps_dot - eps_dot^vp),  kappa' = kappa_dot
-  /// integrated by RK4 (docs/theory.md §1.5, eq. 1.13), with the tangent D at each stage.
+  /// integrated by RK4 (docs/theory.md §1.5, eq. 1.10c), with the tangent D at each stage.
   void integrate_stress_dependent(const double* rate_sigma, double interval, double* sigma,
                                   double* kappa) const;
   /// The stress of the carried components as a full tensor (stress-free components zero).

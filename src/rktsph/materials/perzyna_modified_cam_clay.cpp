@@ -69,16 +69,16 @@ std::unique_ptr<Material> PerzynaModifiedCamClay::from_parameters(ParameterReade
 ElasticConstants PerzynaModifiedCamClay::pressure_dependent_elastic(
     const PerzynaModifiedCamClayParameters& p, double pressure) {
   const double clamped = std::clamp(pressure, p.minimum_pressure, p.maximum_pressure);
-  // eq. 1.11: the slope kappa_c of the unloading line e = e_kappa - kappa_c ln p' gives
+  // eq. 1.10a: the slope kappa_c of the unloading line e = e_kappa - kappa_c ln p' gives
   // dp/d(eps_v, compression positive) = (1 + e) p / kappa_c, with e held at e0.
   const double bulk = (1.0 + p.initial_void_ratio) * clamped / p.swelling_index;
   ElasticConstants constants;
   if (std::isnan(p.shear_modulus)) {
-    // eq. 1.12 with constant nu: E = 3K(1 - 2nu).
+    // eq. 1.10b with constant nu: E = 3K(1 - 2nu).
     constants.poisson_ratio = p.poisson_ratio;
     constants.young_modulus = 3.0 * bulk * (1.0 - 2.0 * p.poisson_ratio);
   } else {
-    // eq. 1.12 with constant G: E = 9KG / (3K + G), nu = (3K - 2G) / (2(3K + G)).
+    // eq. 1.10b with constant G: E = 9KG / (3K + G), nu = (3K - 2G) / (2(3K + G)).
     const double shear = p.shear_modulus;
     constants.young_modulus = 9.0 * bulk * shear / (3.0 * bulk + shear);
     constants.poisson_ratio = (3.0 * bulk - 2.0 * shear) / (2.0 * (3.0 * bulk + shear));

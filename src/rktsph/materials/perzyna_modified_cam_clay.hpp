@@ -9,7 +9,7 @@
 //   .cpp), pc_rate = -((1 + e0) / (lambda_c - kappa_c)) pc tr(eps_vp_rate)  (tension-positive
 //   strain).
 //
-// Elasticity (key `elasticity`, docs/theory.md §1.5, eqs. 1.11–1.12): `constant` (the default),
+// Elasticity (key `elasticity`, docs/theory.md §1.5, eqs. 1.10a–1.10b): `constant` (the default),
 // linear with constant E, nu; or `pressure_dependent`, the hypoelastic law of critical-state soil
 // mechanics K = (1 + e0) p / kappa_c with G from a constant nu or a constant G, p clamped to
 // [minimum_pressure, maximum_pressure]. The void ratio is held at e0 in both.
@@ -79,7 +79,7 @@ class PerzynaModifiedCamClay final : public Material {
   /// clamped mean pressure (pressure_dependent_elastic).
   ElasticConstants elastic_at(const SymmetricTensor& stress) const override;
   /// K = (1 + e0) p / kappa_c with p clamped to [minimum_pressure, maximum_pressure], G from nu
-  /// (G = 3K(1 - 2nu) / (2(1 + nu))) or given (docs/theory.md eqs. 1.11–1.12).
+  /// (G = 3K(1 - 2nu) / (2(1 + nu))) or given (docs/theory.md eqs. 1.10a–1.10b).
   static ElasticConstants pressure_dependent_elastic(const PerzynaModifiedCamClayParameters& p,
                                                      double pressure);
 

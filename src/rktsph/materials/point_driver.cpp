@@ -65,7 +65,7 @@ class PointRates {
     SymmetricTensor stress;
     std::copy_n(state + kStressOffset, 6, stress.begin());
     const std::span<const double> internal(state + kInternalOffset, internal_rate_.size());
-    // The tangent stiffness at this stage's stress (docs/theory.md eq. 1.13).
+    // The tangent stiffness at this stage's stress (docs/theory.md eq. 1.10c).
     if (material_.stress_dependent_elasticity()) set_stiffness(material_.elastic_at(stress));
     SymmetricTensor viscoplastic_strain_rate{};
     std::fill(internal_rate_.begin(), internal_rate_.end(), 0.0);

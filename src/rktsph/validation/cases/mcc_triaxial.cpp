@@ -1,4 +1,4 @@
-// Modified Cam-Clay with pressure-dependent elasticity (docs/theory.md §1.5, eqs. 1.11–1.13):
+// Modified Cam-Clay with pressure-dependent elasticity (docs/theory.md §1.5, eqs. 1.10a–1.10c):
 // drained and undrained compression of normally and lightly overconsolidated clay, four
 // plane-strain samples of one run (cases/mcc-triaxial). Everything is read from the case: the
 // materials, the isotropic p0 (initial stress), the top velocity, the sample height. Checks:

@@ -1,5 +1,5 @@
 // Closed forms of Modified Cam-Clay with the pressure-dependent elasticity K = (1 + e0) p / kappa
-// (docs/theory.md §1.5, eqs. 1.11–1.12; Wood, "Soil behaviour and critical state soil mechanics",
+// (docs/theory.md §1.5, eqs. 1.10a–1.10b; Wood, "Soil behaviour and critical state soil mechanics",
 // 1990, ch. 6–7; Roscoe & Burland 1968). Mean effective pressure p is compression positive,
 // volumetric strain tension positive (as everywhere in the code); the void ratio is held at e0,
 // as the material holds it.
