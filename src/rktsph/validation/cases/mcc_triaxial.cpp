@@ -94,11 +94,11 @@ Failure failure_of(const PerzynaModifiedCamClay& clay, const SymmetricTensor& st
   return {invariants.pressure, invariants.q, clay.critical_state_ratio(invariants.sin_3theta)};
 }
 
-/// The material point driven along `path` from the isotropic p0; the states every `every` steps.
+/// The material point driven along `path` from the isotropic p0; the state of every step.
 std::vector<PointState> drive_point(const Material& clay, const StrainPath& path, double p0) {
   DriveOptions options;
   options.time_step = kDriverStep;
-  options.record_every = 10;
+  options.record_every = 1;  // the plotted paths: 0.1 % of strain a step at the case's rate
   return drive(clay, path, initial_point_state(clay, {-p0, -p0, -p0, 0, 0, 0}), options);
 }
 
