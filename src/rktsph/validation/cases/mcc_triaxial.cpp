@@ -254,6 +254,13 @@ std::vector<CheckResult> validate_mcc_triaxial(const ValidationContext& context)
         "with the point driver on the same path; the triaxial closed forms are checked on the "
         "material alone.",
         p0 / 1e3, 100.0 * nominal_axial_strain(description)));
+    context.report->add_picture(
+        {"final_q", directory.string(), "deviatoric_stress", -1, -1.0, 0.0,
+         fmt::format("q at the end on the reference positions (the nominal {:.0f} % strain of the "
+                     "small-deformation model drawn at true scale would squash the samples): left "
+                     "to right drained NC, drained OC, undrained NC, undrained OC; each sample "
+                     "uniform, q = M(theta) p' of its own p'",
+                     100.0 * nominal_axial_strain(description))});
     context.report->add_figure({"stress_paths", "Effective stress paths (mean of each sample)",
                                 "p' [kPa]", "q [kPa]", std::move(paths)});
   }
