@@ -104,7 +104,8 @@ class OverstressIntegrator {
     integrate(rate_sigma, interval, sigma, kappa);
     cut_tension(sigma);
   }
-  /// The sub-stepped update of advance, before the tension cut-off.
+  /// The sub-stepped update of advance, before the tension cut-off. A material with
+  /// stress-dependent elasticity is always integrated in the frozen-flux form.
   void integrate(const double* rate_sigma, double interval, double* sigma, double* kappa) const;
   /// Returns a mean stress above the material's tension cut-off onto it (docs/theory.md eq. 1.7).
   void cut_tension(double* sigma) const;

@@ -34,8 +34,8 @@ struct PerzynaModifiedCamClayParameters {
   /// The two elastic laws (see the top of this file).
   enum class Elasticity { Constant, PressureDependent };
   Elasticity elasticity = Elasticity::Constant;
-  // Pressure-dependent elasticity only: exactly one of poisson_ratio and shear_modulus is
-  // positive-definite input, the other NaN.
+  // Pressure-dependent elasticity only: exactly one of poisson_ratio and shear_modulus is given,
+  // the other is NaN.
   double poisson_ratio = std::numeric_limits<double>::quiet_NaN();  // nu [-], in (-1, 0.5)
   double shear_modulus = std::numeric_limits<double>::quiet_NaN();  // G [Pa], > 0
   double minimum_pressure = 0.0;                                    // [Pa], > 0
