@@ -13,6 +13,7 @@
 #include <limits>
 
 #include "rktsph/materials/linear_elastic.hpp"
+#include "rktsph/materials/perzyna_modified_cam_clay.hpp"
 #include "rktsph/materials/perzyna_von_mises.hpp"
 
 namespace rktsph {
@@ -275,6 +276,61 @@ TEST(OverstressIntegrator, ElasticMaterialAdvancesByTheRate) {
   const std::array<double, 4> rate{8.0, 4.0, 2.0, 1.0};
   integrator.advance(rate.data(), 0.5, sigma.data(), nullptr);
   EXPECT_EQ(sigma, (std::array<double, 4>{5.0, 4.0, 4.0, 4.5}));
+}
+
+// Stress-dependent elasticity (Modified Cam-Clay, K = (1 + e0) p / kappa, docs/theory.md eqs.
+// 1.10a-1.10c) in plane strain: the step's flux rate is D(p_max) : eps_dot; the integrator must
+// recover eps_dot and follow the swelling line ln(p / p0) = -(1 + e0) eps_v / kappa with the
+// tangent D, not the stiffest one it was given.
+CondensedStiffness plane_strain_of(const ElasticConstants& elastic) {
+  CondensedStiffness d{};
+  const double lambda = elastic.lame_lambda(), shear = elastic.shear_modulus();
+  for (int r : {0, 1, 3})
+    for (int c : {0, 1, 3})
+      at(d, r, c) = r == c ? lambda + 2.0 * shear : lambda;
+  at(d, 2, 2) = shear;
+  return d;
+}
+
+TEST(OverstressIntegrator, StressDependentElasticityFollowsTheSwellingLine) {
+  constexpr double kappa = 0.05, e0 = 1.0, pc0 = 2e5;
+  PerzynaModifiedCamClayParameters parameters;
+  parameters.friction_angle = 25.0;
+  parameters.compression_index = 0.2;
+  parameters.swelling_index = kappa;
+  parameters.initial_void_ratio = e0;
+  parameters.preconsolidation_pressure = pc0;
+  parameters.fluidity = 100.0;
+  parameters.elasticity = PerzynaModifiedCamClayParameters::Elasticity::PressureDependent;
+  parameters.poisson_ratio = 0.25;
+  parameters.minimum_pressure = 0.01 * pc0;
+  parameters.maximum_pressure = 4.0 * pc0;
+  const PerzynaModifiedCamClay clay(1800.0, ElasticConstants{}, parameters);
+  Setting s = plane_strain();
+  s.stiffness = plane_strain_of(clay.elastic());
+  const OverstressIntegrator integrator(clay, s.carried, s.stiffness, SourceIntegration{},
+                                        plane_strain_of);
+  // Isotropic swelling (eps_zz is carried in plane strain, so the test imposes it too).
+  const double rate = 1e-3, interval = 0.1;
+  double strain[4] = {rate, rate, 0.0, rate};  // isotropic expansion: eps_zz carried as well
+  double flux[4];
+  for (int r = 0; r < 4; ++r) {
+    flux[r] = 0.0;
+    for (int c = 0; c < 4; ++c)
+      flux[r] += at(s.stiffness, r, c) * strain[c];
+  }
+  double sigma[4] = {-pc0, -pc0, 0.0, -pc0};
+  double kappa_state[2] = {0.0, pc0};
+  for (int step = 1; step <= 100; ++step) {
+    integrator.advance(flux, interval, sigma, kappa_state);
+    const double volumetric_strain = 3.0 * rate * interval * step;
+    const double expected = pc0 * std::exp(-(1.0 + e0) * volumetric_strain / kappa);
+    const double p = -(sigma[0] + sigma[1] + sigma[3]) / 3.0;
+    // RK4 on a smooth linear ODE, each interval a 0.6 % change of p: ~1e-12 relative.
+    ASSERT_NEAR(p / expected, 1.0, 1e-9) << "step " << step;
+  }
+  EXPECT_EQ(kappa_state[0], 0.0);  // inside the ellipse throughout: no flow
+  EXPECT_NEAR(sigma[2], 0.0, 1e-9);
 }
 
 }  // namespace

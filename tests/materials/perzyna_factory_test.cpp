@@ -80,6 +80,63 @@ TEST(PerzynaFactory, BuildsVonMisesWithDefaults) {
   EXPECT_EQ(internal, (std::vector<double>{0.0, 50e3}));
 }
 
+TEST(PerzynaFactory, CamClayElasticityDefaultsToConstant) {
+  const auto material = create_material(cam_clay_block());
+  EXPECT_FALSE(material->stress_dependent_elasticity());
+  EXPECT_EQ(material->elastic().young_modulus, 8e6);
+  const SymmetricTensor stress{-50e3, -60e3, -70e3, 1e3, 0.0, 0.0};
+  EXPECT_EQ(material->elastic_at(stress).young_modulus, 8e6);
+  EXPECT_EQ(material->elastic_at(stress).poisson_ratio, 0.25);
+}
+
+/// The Cam-Clay block with pressure-dependent elasticity and G from nu (no young_modulus).
+ParameterBlock pressure_dependent_block() {
+  ParameterBlock block = cam_clay_block();
+  block.values.erase("young_modulus");
+  block.words["elasticity"] = {"pressure_dependent", at_line(31)};
+  return block;
+}
+
+TEST(PerzynaFactory, CamClayPressureDependentElasticityKeys) {
+  const auto material = create_material(pressure_dependent_block());
+  ASSERT_TRUE(material->stress_dependent_elasticity());
+  const auto& clay = dynamic_cast<const PerzynaModifiedCamClay&>(*material);
+  // Defaults: the clamp [0.01 pc0, 4 pc0]; elastic() at 4 pc0, K = (1 + e0) p / kappa.
+  EXPECT_DOUBLE_EQ(clay.parameters().minimum_pressure, 1.5e3);
+  EXPECT_DOUBLE_EQ(clay.parameters().maximum_pressure, 600e3);
+  EXPECT_NEAR(material->elastic().bulk_modulus(), 1.9 * 600e3 / 0.04, 1e-3);
+  EXPECT_DOUBLE_EQ(material->elastic().poisson_ratio, 0.25);
+
+  ParameterBlock with_shear = pressure_dependent_block();
+  with_shear.values.erase("poisson_ratio");
+  with_shear.values["shear_modulus"] = {3e6, at_line(32)};
+  with_shear.values["minimum_pressure"] = {5e3, at_line(33)};
+  with_shear.values["maximum_pressure"] = {400e3, at_line(34)};
+  const auto constant_g = create_material(with_shear);
+  EXPECT_NEAR(constant_g->elastic().shear_modulus(), 3e6, 1e-6);
+  EXPECT_NEAR(constant_g->elastic().bulk_modulus(), 1.9 * 400e3 / 0.04, 1e-3);
+}
+
+TEST(PerzynaFactory, CamClayPressureDependentNeedsExactlyOneShearKey) {
+  ParameterBlock both = pressure_dependent_block();
+  both.values["shear_modulus"] = {3e6, at_line(32)};
+  EXPECT_EQ(error_of(both).key(), "materials.clay");
+  ParameterBlock neither = pressure_dependent_block();
+  neither.values.erase("poisson_ratio");
+  EXPECT_EQ(error_of(neither).key(), "materials.clay");
+  // young_modulus is not a key of pressure-dependent elasticity: an unknown key at its line.
+  ParameterBlock with_young = pressure_dependent_block();
+  with_young.values["young_modulus"] = {8e6, at_line(35)};
+  EXPECT_EQ(error_of(with_young).key(), "materials.clay.young_modulus");
+  ParameterBlock unknown_word = cam_clay_block();
+  unknown_word.words["elasticity"] = {"hyperelastic", at_line(31)};
+  EXPECT_EQ(error_of(unknown_word).key(), "materials.clay.elasticity");
+  // shear_modulus belongs to pressure-dependent elasticity only.
+  ParameterBlock constant_with_shear = cam_clay_block();
+  constant_with_shear.values["shear_modulus"] = {3e6, at_line(32)};
+  EXPECT_EQ(error_of(constant_with_shear).key(), "materials.clay.shear_modulus");
+}
+
 TEST(PerzynaFactory, BuildsModifiedCamClay) {
   ParameterBlock block = cam_clay_block();
   block.values["exponent"] = {2.0, at_line(31)};

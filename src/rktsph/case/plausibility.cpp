@@ -31,6 +31,10 @@ const std::vector<PlausibleRange>& material_ranges() {
        "given in t/m^3 or g/cm^3? the unit is kg/m^3 (2 t/m^3 = 2000 kg/m^3)"},
       {"young_modulus", "Pa", 1e5, 1.5e11, "Young's moduli of soils and rocks", 1e5,
        "given in MPa or kPa? the unit is Pa (10 MPa = 1.0e7 Pa)"},
+      // G = E / (2(1 + nu)) of the same soils and rocks (perzyna_modified_cam_clay's
+      // pressure-dependent elasticity with a constant G).
+      {"shear_modulus", "Pa", 3e4, 7.5e10, "shear moduli of soils and rocks", 3e4,
+       "given in MPa or kPa? the unit is Pa (4 MPa = 4.0e6 Pa)"},
       {"yield_stress", "Pa", 1e3, 1e9, "strengths of soils and rocks", 1e3,
        "given in kPa? the unit is Pa (50 kPa = 5.0e4 Pa)"},
       {"minimum_yield_stress", "Pa", 1e2, 1e9, "strengths of soils and rocks", 1e2,

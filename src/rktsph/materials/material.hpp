@@ -40,7 +40,18 @@ class Material {
   /// The name the case file uses for this model, e.g. "linear_elastic".
   virtual std::string model_name() const = 0;
   double density() const { return density_; }
+  /// The elastic constants; for a material whose elasticity depends on the stress, the stiffest
+  /// ones it reaches, so that the time step (Courant) and the wave speeds built on them bound
+  /// every state.
   const ElasticConstants& elastic() const { return elastic_; }
+  /// True if the tangent elastic constants depend on the stress (elastic_at differs from
+  /// elastic()): the stress update then integrates sigma' = D(sigma) : (eps_dot - eps_dot^vp).
+  virtual bool stress_dependent_elasticity() const { return false; }
+  /// The tangent elastic constants at `stress`; elastic() unless stress_dependent_elasticity().
+  virtual ElasticConstants elastic_at(const SymmetricTensor& stress) const {
+    (void)stress;
+    return elastic_;
+  }
 
   /// Number of internal variables (equivalent viscoplastic strain, yield stress, ...).
   virtual int internal_count() const { return 0; }

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <span>
 
 #include "rktsph/materials/material.hpp"
@@ -80,15 +81,22 @@ struct CarriedStress {
 /// strains (sigma = D gamma).
 using CondensedStiffness = std::array<double, CarriedStress::kMax * CarriedStress::kMax>;
 
+/// The condensation of elastic constants onto the carried components (the kinematic setting's D),
+/// for a material whose elasticity depends on the stress (Material::stress_dependent_elasticity):
+/// supplied by the model, which knows the setting.
+using StiffnessCondenser = std::function<CondensedStiffness(const ElasticConstants&)>;
+
 /// The stress update of one material in one kinematic setting (see the top of this file).
 class OverstressIntegrator {
  public:
   /// The most internal variables a material may have.
   static constexpr int kMaxInternal = 8;
 
-  /// `material` must outlive the integrator.
+  /// `material` must outlive the integrator. `stiffness` is D of material.elastic(); `condense`
+  /// is needed (and used) only if the material's elasticity depends on the stress.
   OverstressIntegrator(const Material& material, const CarriedStress& carried,
-                       const CondensedStiffness& stiffness, SourceIntegration integration);
+                       const CondensedStiffness& stiffness, SourceIntegration integration,
+                       StiffnessCondenser condense = {});
 
   /// sigma (the carried components) and kappa advanced over `interval` under the frozen flux rate
   /// `rate_sigma`, then returned onto the tension cut-off.
@@ -96,7 +104,8 @@ class OverstressIntegrator {
     integrate(rate_sigma, interval, sigma, kappa);
     cut_tension(sigma);
   }
-  /// The sub-stepped update of advance, before the tension cut-off.
+  /// The sub-stepped update of advance, before the tension cut-off. A material with
+  /// stress-dependent elasticity is always integrated in the frozen-flux form.
   void integrate(const double* rate_sigma, double interval, double* sigma, double* kappa) const;
   /// Returns a mean stress above the material's tension cut-off onto it (docs/theory.md eq. 1.7).
   void cut_tension(double* sigma) const;
@@ -107,10 +116,21 @@ class OverstressIntegrator {
   const Material& material() const { return material_; }
 
  private:
+  /// integrate() for stress-dependent elasticity: the flux rate is D : eps_dot with D of
+  /// elastic(), so eps_dot = D^-1 R_sigma is recovered and
+  ///   sigma' = D(sigma) : (eps_dot - eps_dot^vp),  kappa' = kappa_dot
+  /// integrated by RK4 (docs/theory.md §1.5, eq. 1.10c), with the tangent D at each stage.
+  void integrate_stress_dependent(const double* rate_sigma, double interval, double* sigma,
+                                  double* kappa) const;
+  /// The stress of the carried components as a full tensor (stress-free components zero).
+  SymmetricTensor full_stress(const double* sigma) const;
+
   const Material& material_;
   CarriedStress carried_;
   CondensedStiffness stiffness_;
   SourceIntegration integration_;
+  StiffnessCondenser condense_;
+  CondensedStiffness compliance_{};  // the inverse of stiffness_ (stress-dependent elasticity)
 };
 
 }  // namespace rktsph

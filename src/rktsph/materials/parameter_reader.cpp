@@ -106,6 +106,10 @@ std::string ParameterReader::optional_word(const std::string& key, const std::st
   return word->second.first;
 }
 
+void ParameterReader::reject_block(const std::string& problem, const std::string& expected) {
+  errors_.emplace_back(block_.where, block_.path, "", problem, expected);
+}
+
 void ParameterReader::reject_unknown_keys() {
   const std::vector<std::string> known(asked_.begin(), asked_.end());
   const std::string allowed = "model, " + quoted_list(known);

@@ -28,6 +28,12 @@ class ParameterReader {
   /// "matching: plane_strain"), with a default; a mistake is recorded and the default returned.
   std::string optional_word(const std::string& key, const std::string& fallback,
                             const std::vector<std::string>& allowed);
+  /// True if the block writes `key` (as a number or a word); does not count as asking for it.
+  bool has(const std::string& key) const {
+    return block_.values.count(key) > 0 || block_.words.count(key) > 0;
+  }
+  /// Records a mistake of the block as a whole (keys that exclude or require each other).
+  void reject_block(const std::string& problem, const std::string& expected);
   /// Records an error for every key of the block that was not asked for, with the nearest
   /// known key as a suggestion ("yeild_stress": did you mean 'yield_stress'?).
   void reject_unknown_keys();

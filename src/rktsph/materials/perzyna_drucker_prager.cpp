@@ -128,7 +128,7 @@ void PerzynaDruckerPrager::viscoplastic_rate(const SymmetricTensor& stress,
       strain_rate[i] = deviatoric_factor * invariants.deviator[i];
     volumetric += cone_rate * c.dilatancy_slope / 3.0;
   }
-  // The cut-off flows along its own normal dF_t/dstress = I/3 (associated, eq. 1.13).
+  // The cut-off flows along its own normal dF_t/dstress = I/3 (associated, eq. 1.10c).
   if (cutoff_rate > 0.0) volumetric += cutoff_rate / 3.0;
   for (int i = 0; i < 3; ++i)
     strain_rate[i] += volumetric;

@@ -13,14 +13,27 @@ namespace rktsph {
 
 PerzynaModifiedCamClay::PerzynaModifiedCamClay(double density, ElasticConstants elastic,
                                                PerzynaModifiedCamClayParameters parameters)
-    : Material(density, elastic),
+    : Material(density, parameters.elasticity ==
+                                PerzynaModifiedCamClayParameters::Elasticity::PressureDependent
+                            ? pressure_dependent_elastic(parameters, parameters.maximum_pressure)
+                            : elastic),
       parameters_(parameters),
       sin_friction_angle_(std::sin(parameters.friction_angle * std::numbers::pi / 180.0)) {}
 
 std::unique_ptr<Material> PerzynaModifiedCamClay::from_parameters(ParameterReader& reader) {
   constexpr double infinity = std::numeric_limits<double>::infinity();
-  const ElasticParameters elastic = read_elastic_parameters(reader);
+  using Elasticity = PerzynaModifiedCamClayParameters::Elasticity;
   PerzynaModifiedCamClayParameters p;
+  const bool pressure_dependent =
+      reader.optional_word("elasticity", "constant", {"constant", "pressure_dependent"}) ==
+      "pressure_dependent";
+  ElasticParameters elastic{};
+  if (pressure_dependent) {
+    p.elasticity = Elasticity::PressureDependent;
+    elastic.density = reader.required("density", 0.0, infinity, true);
+  } else {
+    elastic = read_elastic_parameters(reader);
+  }
   p.friction_angle = reader.required("friction_angle", 0.0, 90.0, true, true);
   p.swelling_index = reader.required("swelling_index", 0.0, infinity, true);
   // lambda_c > kappa_c, otherwise the hardening factor (1 + e0)/(lambda_c - kappa_c) is not
@@ -30,7 +43,52 @@ std::unique_ptr<Material> PerzynaModifiedCamClay::from_parameters(ParameterReade
   p.preconsolidation_pressure = reader.required("preconsolidation_pressure", 0.0, infinity, true);
   p.fluidity = reader.required("fluidity", 0.0, infinity, true);
   p.exponent = reader.optional("exponent", 1.0, 0.0, infinity, true);
+  if (pressure_dependent) {
+    // G from a constant nu, or a constant G: one of the two, never both (the other would be
+    // silently overridden).
+    const bool has_poisson = reader.has("poisson_ratio"), has_shear = reader.has("shear_modulus");
+    if (has_poisson == has_shear)
+      reader.reject_block(
+          "elasticity: pressure_dependent needs exactly one of poisson_ratio and "
+          "shear_modulus",
+          "poisson_ratio in (-1, 0.5) or shear_modulus > 0");
+    if (has_shear)
+      p.shear_modulus = reader.required("shear_modulus", 0.0, infinity, true);
+    else
+      p.poisson_ratio = reader.required("poisson_ratio", -1.0, 0.5, true, true);
+    // The clamp keeps K (and G with nu) away from 0 at vanishing p (a free surface, a tensile
+    // state) and bounds the stiffest state, which sizes the time step.
+    const double pc0 = p.preconsolidation_pressure;
+    p.minimum_pressure = reader.optional("minimum_pressure", 0.01 * pc0, 0.0, infinity, true);
+    p.maximum_pressure =
+        reader.optional("maximum_pressure", 4.0 * pc0, p.minimum_pressure, infinity, true);
+  }
   return std::make_unique<PerzynaModifiedCamClay>(elastic.density, elastic.elastic, p);
+}
+
+ElasticConstants PerzynaModifiedCamClay::pressure_dependent_elastic(
+    const PerzynaModifiedCamClayParameters& p, double pressure) {
+  const double clamped = std::clamp(pressure, p.minimum_pressure, p.maximum_pressure);
+  // eq. 1.10a: the slope kappa_c of the unloading line e = e_kappa - kappa_c ln p' gives
+  // dp/d(eps_v, compression positive) = (1 + e) p / kappa_c, with e held at e0.
+  const double bulk = (1.0 + p.initial_void_ratio) * clamped / p.swelling_index;
+  ElasticConstants constants;
+  if (std::isnan(p.shear_modulus)) {
+    // eq. 1.10b with constant nu: E = 3K(1 - 2nu).
+    constants.poisson_ratio = p.poisson_ratio;
+    constants.young_modulus = 3.0 * bulk * (1.0 - 2.0 * p.poisson_ratio);
+  } else {
+    // eq. 1.10b with constant G: E = 9KG / (3K + G), nu = (3K - 2G) / (2(3K + G)).
+    const double shear = p.shear_modulus;
+    constants.young_modulus = 9.0 * bulk * shear / (3.0 * bulk + shear);
+    constants.poisson_ratio = (3.0 * bulk - 2.0 * shear) / (2.0 * (3.0 * bulk + shear));
+  }
+  return constants;
+}
+
+ElasticConstants PerzynaModifiedCamClay::elastic_at(const SymmetricTensor& stress) const {
+  if (!stress_dependent_elasticity()) return elastic();
+  return pressure_dependent_elastic(parameters_, mean_pressure(stress));
 }
 
 std::vector<std::string> PerzynaModifiedCamClay::internal_names() const {
@@ -136,7 +194,7 @@ PerzynaModifiedCamClay::SourceState PerzynaModifiedCamClay::source(const SourceS
   std::array<double, 2> internal_rate{};
   SymmetricTensor strain_rate;
   viscoplastic_rate(state.stress, internal, strain_rate, internal_rate);
-  SymmetricTensor stress_rate = apply_elastic_stiffness(elastic(), strain_rate);
+  SymmetricTensor stress_rate = apply_elastic_stiffness(elastic_at(state.stress), strain_rate);
   for (double& component : stress_rate)
     component = -component;
   return {stress_rate, internal_rate[kPreconsolidationPressure]};
@@ -160,7 +218,7 @@ double PerzynaModifiedCamClay::source_stiffness(const SymmetricTensor& stress,
   // first one, while the stress still relaxes at its own rate. The larger of the two is returned.
   const double pc = internal[kPreconsolidationPressure];
   const SymmetricTensor direction = flow_direction(stress, pc);
-  const SymmetricTensor stress_direction = apply_elastic_stiffness(elastic(), direction);
+  const SymmetricTensor stress_direction = apply_elastic_stiffness(elastic_at(stress), direction);
   const double hardening_direction = hardening_factor() * pc * trace(direction);
   const double step = kStiffnessStepRatio * pc;
   const SourceState base{stress, pc};

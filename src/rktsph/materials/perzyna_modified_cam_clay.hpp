@@ -9,8 +9,13 @@
 //   .cpp), pc_rate = -((1 + e0) / (lambda_c - kappa_c)) pc tr(eps_vp_rate)  (tension-positive
 //   strain).
 //
-// Elasticity is linear (constant E, nu) and the void ratio is held at e0.
+// Elasticity (key `elasticity`, docs/theory.md §1.5, eqs. 1.10a–1.10b): `constant` (the default),
+// linear with constant E, nu; or `pressure_dependent`, the hypoelastic law of critical-state soil
+// mechanics K = (1 + e0) p / kappa_c with G from a constant nu or a constant G, p clamped to
+// [minimum_pressure, maximum_pressure]. The void ratio is held at e0 in both.
 #pragma once
+
+#include <limits>
 
 #include "rktsph/materials/invariants.hpp"
 #include "rktsph/materials/material.hpp"
@@ -26,6 +31,15 @@ struct PerzynaModifiedCamClayParameters {
   double preconsolidation_pressure = 0.0;  // pc0 [Pa], > 0
   double fluidity = 0.0;                   // gamma [1/s], > 0
   double exponent = 1.0;                   // N [-], > 0
+  /// The two elastic laws (see the top of this file).
+  enum class Elasticity { Constant, PressureDependent };
+  Elasticity elasticity = Elasticity::Constant;
+  // Pressure-dependent elasticity only: exactly one of poisson_ratio and shear_modulus is given,
+  // the other is NaN.
+  double poisson_ratio = std::numeric_limits<double>::quiet_NaN();  // nu [-], in (-1, 0.5)
+  double shear_modulus = std::numeric_limits<double>::quiet_NaN();  // G [Pa], > 0
+  double minimum_pressure = 0.0;                                    // [Pa], > 0
+  double maximum_pressure = 0.0;                                    // [Pa], > minimum_pressure
 };
 
 class PerzynaModifiedCamClay final : public Material {
@@ -34,10 +48,14 @@ class PerzynaModifiedCamClay final : public Material {
   static constexpr int kEquivalentStrain = 0;          // "eps_vp" [-]
   static constexpr int kPreconsolidationPressure = 1;  // "preconsolidation_pressure" [Pa]
 
+  /// `elastic`: the constant E, nu; with pressure-dependent elasticity it is not used (elastic()
+  /// is then the tangent at maximum_pressure, the stiffest state).
   PerzynaModifiedCamClay(double density, ElasticConstants elastic,
                          PerzynaModifiedCamClayParameters parameters);
-  /// Keys: density, young_modulus, poisson_ratio, friction_angle, compression_index,
-  /// swelling_index, initial_void_ratio, preconsolidation_pressure, fluidity, exponent (1).
+  /// Keys: density, friction_angle, compression_index, swelling_index, initial_void_ratio,
+  /// preconsolidation_pressure, fluidity, exponent (1), elasticity (constant); with constant
+  /// elasticity young_modulus and poisson_ratio; with pressure_dependent exactly one of
+  /// poisson_ratio and shear_modulus, and minimum_pressure (0.01 pc0), maximum_pressure (4 pc0).
   static std::unique_ptr<Material> from_parameters(ParameterReader& reader);
 
   std::string model_name() const override { return "perzyna_modified_cam_clay"; }
@@ -52,6 +70,18 @@ class PerzynaModifiedCamClay final : public Material {
   /// source moves them; see the .cpp for the two directions used. Positive whenever Psi > 0.
   double source_stiffness(const SymmetricTensor& stress,
                           std::span<const double> internal) const override;
+
+  bool stress_dependent_elasticity() const override {
+    return parameters_.elasticity ==
+           PerzynaModifiedCamClayParameters::Elasticity::PressureDependent;
+  }
+  /// The tangent constants at `stress`: elastic() with constant elasticity, else those at the
+  /// clamped mean pressure (pressure_dependent_elastic).
+  ElasticConstants elastic_at(const SymmetricTensor& stress) const override;
+  /// K = (1 + e0) p / kappa_c with p clamped to [minimum_pressure, maximum_pressure], G from nu
+  /// (G = 3K(1 - 2nu) / (2(1 + nu))) or given (docs/theory.md eqs. 1.10a–1.10b).
+  static ElasticConstants pressure_dependent_elastic(const PerzynaModifiedCamClayParameters& p,
+                                                     double pressure);
 
   const PerzynaModifiedCamClayParameters& parameters() const { return parameters_; }
   /// M(theta) from sin 3theta (docs/theory.md §1.5); 6 sin(phi)/(3 - sin(phi)) in triaxial

@@ -55,14 +55,7 @@ constexpr int kInternalOffset = 12;
 class PointRates {
  public:
   PointRates(const Material& material, const StrainPath& path) : material_(material), path_(path) {
-    for (int column = 0; column < 6; ++column) {
-      SymmetricTensor unit{};
-      unit[column] = 1.0;
-      const SymmetricTensor stress = apply_elastic_stiffness(material.elastic(), unit);
-      for (int row = 0; row < 6; ++row)
-        stiffness_(row, column) = stress[row];
-    }
-    build_stress_control_solver();
+    set_stiffness(material.elastic());
     internal_rate_.assign(static_cast<std::size_t>(material.internal_count()), 0.0);
   }
 
@@ -72,6 +65,8 @@ class PointRates {
     SymmetricTensor stress;
     std::copy_n(state + kStressOffset, 6, stress.begin());
     const std::span<const double> internal(state + kInternalOffset, internal_rate_.size());
+    // The tangent stiffness at this stage's stress (docs/theory.md eq. 1.10c).
+    if (material_.stress_dependent_elasticity()) set_stiffness(material_.elastic_at(stress));
     SymmetricTensor viscoplastic_strain_rate{};
     std::fill(internal_rate_.begin(), internal_rate_.end(), 0.0);
     if (viscoplastic)
@@ -100,6 +95,18 @@ class PointRates {
   }
 
  private:
+  /// D of `elastic` and the stress-control solver built on it.
+  void set_stiffness(const ElasticConstants& elastic) {
+    for (int column = 0; column < 6; ++column) {
+      SymmetricTensor unit{};
+      unit[column] = 1.0;
+      const SymmetricTensor stress = apply_elastic_stiffness(elastic, unit);
+      for (int row = 0; row < 6; ++row)
+        stiffness_(row, column) = stress[row];
+    }
+    build_stress_control_solver();
+  }
+
   /// inv(D_UU) embedded in a 6x6 matrix (zero outside U x U), U = stress-controlled components.
   void build_stress_control_solver() {
     std::vector<int> controlled;

@@ -89,14 +89,22 @@ DrySolid::DrySolid(Kinematics kinematics, std::vector<std::unique_ptr<Material>>
           layout_.gradient(layout_.stress(a, b), b);
   // The integrators take D as a plain table: StiffnessMatrix belongs to physics/, above
   // materials/.
+  const auto as_table = [](const StiffnessMatrix& matrix) {
+    CondensedStiffness table{};
+    for (int r = 0; r < matrix.size(); ++r)
+      for (int c = 0; c < matrix.size(); ++c)
+        table[static_cast<std::size_t>(r * CarriedStress::kMax + c)] = matrix(r, c);
+    return table;
+  };
+  // The tangent D of a material whose elasticity depends on the stress, condensed like
+  // stiffness_ (the assumption is a static object, so the condenser outlives any copy).
+  const StiffnessCondenser condense = [&assumption, as_table](const ElasticConstants& elastic) {
+    return as_table(assumption.stiffness(elastic));
+  };
   integrators_.reserve(materials_.size());
-  for (std::size_t m = 0; m < materials_.size(); ++m) {
-    CondensedStiffness stiffness{};
-    for (int r = 0; r < carried_.count; ++r)
-      for (int c = 0; c < carried_.count; ++c)
-        stiffness[static_cast<std::size_t>(r * CarriedStress::kMax + c)] = stiffness_[m](r, c);
-    integrators_.emplace_back(*materials_[m], carried_, stiffness, integration_);
-  }
+  for (std::size_t m = 0; m < materials_.size(); ++m)
+    integrators_.emplace_back(*materials_[m], carried_, as_table(stiffness_[m]), integration_,
+                              condense);
 }
 
 double DrySolid::wave_speed(std::int32_t material) const {

@@ -10,6 +10,10 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_bar1d_viscoplastic},
       {"sample2d-localization", "shear band in a softening plane-strain sample (4.4)",
        &validate_sample2d_localization},
+      {"mcc-triaxial",
+       "Modified Cam-Clay, pressure-dependent elasticity: drained/undrained to "
+       "the critical state",
+       &validate_mcc_triaxial},
       {"slope-elastic", "elastic vertical slope under ramped gravity with damping (4.5.1)",
        &validate_slope_elastic},
       {"slope-viscoplastic", "critical stability number of a vertical cut (4.5.2)",

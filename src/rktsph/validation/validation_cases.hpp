@@ -11,6 +11,7 @@ namespace rktsph {
 std::vector<CheckResult> validate_bar1d_elastic(const ValidationContext& context);
 std::vector<CheckResult> validate_bar1d_viscoplastic(const ValidationContext& context);
 std::vector<CheckResult> validate_sample2d_localization(const ValidationContext& context);
+std::vector<CheckResult> validate_mcc_triaxial(const ValidationContext& context);
 std::vector<CheckResult> validate_slope_elastic(const ValidationContext& context);
 std::vector<CheckResult> validate_triangles_slope_elastic(const ValidationContext& context);
 std::vector<CheckResult> validate_slope_viscoplastic(const ValidationContext& context);

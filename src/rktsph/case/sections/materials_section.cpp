@@ -12,8 +12,9 @@ namespace rktsph {
 namespace {
 
 /// The keys of material blocks whose values are words, not numbers: `matching` of
-/// perzyna_drucker_prager. The material checks the word; here it only has to be a name.
-const std::set<std::string> kMaterialWordKeys = {"matching"};
+/// perzyna_drucker_prager, `elasticity` of perzyna_modified_cam_clay. The material checks the
+/// word; here it only has to be a name.
+const std::set<std::string> kMaterialWordKeys = {"matching", "elasticity"};
 
 ParameterBlock read_material(const YamlNode& entry, ErrorList& errors) {
   ParameterBlock parameters;
