@@ -471,6 +471,10 @@ TEST(CommandLine, DivergingRunStopsWithADiagnosisAndKeepsItsLastGoodOutput) {
   EXPECT_EQ(result.status, 3) << result.output;
   EXPECT_NE(result.output.find("diverged at step"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("SPH node"), std::string::npos) << result.output;
+  // Issue 30: a stop says what to change (this case diverges from a Courant number too large for
+  // its smoothing length) and where the last good state is.
+  EXPECT_NE(result.output.find("lower numerics.courant"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("last field output"), std::string::npos) << result.output;
   std::ifstream summary(out / "summary.json");
   const std::string text_summary((std::istreambuf_iterator<char>(summary)),
                                  std::istreambuf_iterator<char>());

@@ -178,3 +178,34 @@ TEST(AdjointOperator, UniformStressUnderItsTractionIsAFixedPointOfTheStep) {
 
 }  // namespace
 }  // namespace rktsph
+
+namespace rktsph {
+namespace {
+
+// Issue 30: a node no stress point reaches stopped a run with "node 1079 is in no forward row"; the
+// builder now names the node (UnreachedNode) and the step says where it is, what happened and what
+// to change, without the advice to refine that makes a fixed-cell flow fail sooner.
+TEST(AdjointOperatorTest, ANodeNoStressPointReachesIsNamedWithItsPositionAndAdvice) {
+  const NodeSets nodes = test::rectangle_lattice(3.0, 2.0, 1.0);
+  const OperatorOptions options = options_for(0.75, {});
+  const CellList node_cells(nodes.sph_nodes, options.kernel.support_radius(0.75));
+  const WeightTable forward = build_cross_operator(nodes.stress_points, node_cells, options);
+  // One node more than the lattice holds: no forward row reaches it.
+  const auto lone = static_cast<std::int32_t>(nodes.sph_nodes.size());
+  const std::vector<std::int32_t> targets{0, lone};
+  const std::vector<std::int32_t> no_own_value(targets.size(), -1);
+  try {
+    build_adjoint_operator(forward, nodes.stress_points.volume, targets, no_own_value);
+    FAIL() << "a node out of every row's reach was accepted";
+  } catch (const UnreachedNode& unreached) {
+    EXPECT_EQ(unreached.node(), lone);
+  }
+  const std::string message = describe_unreached_node(nodes.sph_nodes, 4);
+  EXPECT_NE(message.find(describe_point(nodes.sph_nodes, 4)), std::string::npos) << message;
+  EXPECT_NE(message.find("finer lattice fails sooner"), std::string::npos) << message;
+  EXPECT_NE(message.find("time.end"), std::string::npos) << message;
+  EXPECT_EQ(message.find("refine"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace rktsph

@@ -51,8 +51,12 @@ PressureProjection::PressureProjection(const SaturatedVpw& model, const NodeSets
   StencilReport report;
   gradient_ = build_collocated_gradient(nodes.sph_nodes, cells, options, {}, &report);
   if (!report.degenerate_rows.empty())
-    throw RunError(fmt::format("the SPH node {} has a degenerate collocated stencil",
-                               report.degenerate_rows.front()));
+    throw RunError(fmt::format(
+        "the pore-pressure gradient cannot be formed at the SPH node at {}: the nodes around it "
+        "lie on one line or are too few (a strip of soil one node wide, or a lone node at a "
+        "corner), so the pressure solve has no stencil there; make every part of the soil at "
+        "least two spacings wide",
+        describe_point(nodes.sph_nodes, static_cast<std::size_t>(report.degenerate_rows.front()))));
   laplacian_ =
       build_laplacian(nodes.sph_nodes, cells, options, nodes.spacing, fluid.laplacian_scale);
   statistics_.laplacian_scale = laplacian_.scale;
@@ -158,7 +162,11 @@ void PressureProjection::assemble(double dt) {
     s.cholesky.setMaxIterations(max_iterations_);
     s.cholesky.compute(system_);
     if (s.cholesky.info() != Eigen::Success)
-      throw RunError("the incomplete Cholesky factorisation of the pore-pressure matrix failed");
+      throw RunError(
+          "the incomplete Cholesky factorisation of the pore-pressure matrix failed (a pivot "
+          "vanished: the matrix is not positive definite enough for it, as with a very low "
+          "permeability beside a drained face); set pore_fluid.preconditioner to multigrid (the "
+          "default) or jacobi");
   } else {
     s.jacobi.setTolerance(tolerance_);
     s.jacobi.setMaxIterations(max_iterations_);

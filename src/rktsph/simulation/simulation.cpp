@@ -144,8 +144,15 @@ RunStatus Simulation::run() {
     }
     const std::string problem = find_divergence(state());
     if (!problem.empty()) {
-      message_ = fmt::format("diverged at step {} (t = {:.6g} s): {}", state().step, state().time,
-                             problem);
+      // What to change: the explicit step is stable below the Courant limit (docs/theory.md §2.5),
+      // so a smaller step removes a growth that the step makes; a growth that the physics makes
+      // (a material or load out of range) shows in the plausibility warnings of `rktsph check`.
+      message_ = fmt::format(
+          "diverged at step {} (t = {:.6g} s): {}. The state before that step is the last field "
+          "output. If the field grew over a few steps, lower numerics.courant; else check the "
+          "material's moduli, density and strength and the loads (`rktsph check` warns of values "
+          "outside those of real soils)",
+          state().step, state().time, problem);
       status = RunStatus::Diverged;
       stopped_in_step_ = true;
       break;

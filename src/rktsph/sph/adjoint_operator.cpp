@@ -1,4 +1,6 @@
 #include "rktsph/sph/adjoint_operator.hpp"
+
+#include <fmt/format.h>
 #include "rktsph/core/parallel.hpp"
 
 #include <algorithm>
@@ -23,6 +25,20 @@ void for_each_target_entry(const WeightTable& forward, const std::vector<std::in
 }
 
 }  // namespace
+
+std::string describe_unreached_node(const PointCloud& nodes, std::int32_t node) {
+  // Met where a node's cells have been crushed or stretched so far that none of their stress
+  // points weighs the node any more: on a moving configuration, where fixed cells cannot follow
+  // a flow (docs/theory.md §9.12, §9.14), where a finer lattice fails sooner, not later.
+  return fmt::format(
+      "the SPH node at {} lies out of reach of every stress point around it (its cells are "
+      "crushed or stretched so far that none of them weighs it, so its velocity has nothing to "
+      "update it): with the large-deformation model the cells are those of the start and cannot "
+      "follow a flow this large (docs/theory.md §9.12); a finer lattice fails sooner, not later. "
+      "Stop the run before this deformation (time.end), lower the imposed velocity or load, or "
+      "give the soil more strength where it flows",
+      describe_point(nodes, static_cast<std::size_t>(node)));
+}
 
 AdjointOperator build_adjoint_operator(const WeightTable& forward,
                                        std::span<const double> row_volume,
@@ -68,8 +84,8 @@ void build_adjoint_operator(const WeightTable& forward, std::span<const double> 
   for (std::size_t r = 0; r < target.size(); ++r) {
     const double volume = adjoint.lumped_volume[r];
     if (table.row_start[r + 1] == 0 || !(volume > 0.0))
-      throw std::invalid_argument("build_adjoint_operator: node " + std::to_string(target[r]) +
-                                  " is in no forward row (zero lumped volume)");
+      throw UnreachedNode(target[r], "build_adjoint_operator: node " + std::to_string(target[r]) +
+                                         " is in no forward row (zero lumped volume)");
     table.row_start[r + 1] += table.row_start[r];
   }
   const auto entries = static_cast<std::size_t>(table.row_start.back());

@@ -21,12 +21,32 @@
 
 #include <cstdint>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "rktsph/core/field_array.hpp"
+#include "rktsph/core/point_cloud.hpp"
 #include "rktsph/sph/operators.hpp"
 
 namespace rktsph {
+
+/// Thrown by build_adjoint_operator for a target node that no forward row reaches (a node out of
+/// the kernel's reach of every stress point, e.g. beside cells crushed on a moving
+/// configuration): the caller, who knows where the node is, explains it to the user.
+class UnreachedNode : public std::invalid_argument {
+ public:
+  UnreachedNode(std::int32_t node, const std::string& what)
+      : std::invalid_argument(what), node_(node) {}
+  std::int32_t node() const { return node_; }
+
+ private:
+  std::int32_t node_;
+};
+
+/// What a user is told about an UnreachedNode at `node` of `nodes` (its position, what happened in
+/// physical words and what to change): the text of the RunError the step's builders throw.
+std::string describe_unreached_node(const PointCloud& nodes, std::int32_t node);
 
 struct AdjointOperator {
   /// Rows = `target` nodes; source = forward row (stress point); gradient = a_Pn, interpolation =

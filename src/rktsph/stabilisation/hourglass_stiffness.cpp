@@ -60,7 +60,8 @@ HourglassStiffness build_hourglass_stiffness(const NodeSets& nodes, const Physic
     if (complex.kind(p) != CellKind::Quadrilateral)
       throw RunError(fmt::format(
           "the cell of the stress point at {} is a {}: the Flanagan-Belytschko hourglass "
-          "stiffness needs quadrilaterals",
+          "stiffness needs quadrilaterals; set numerics.hourglass.stiffness: 0 (its default on "
+          "triangles)",
           describe_point(nodes.stress_points, p), kind_name(complex.kind(p))));
     std::array<double, 4> x{}, y{};
     const auto corners = complex.corners(p);

@@ -108,8 +108,11 @@ void MovingConfiguration::after_step(State& state) {
     throw RunError(fmt::format(
         "{} cell(s) of the moving configuration folded over at step {} (t = {:.6g} s), first the "
         "cell of the stress point at {}: its nodes have crossed and its area is no longer "
-        "positive, so the cell has no volume to integrate (docs/theory.md §9.1); reduce the time "
-        "step or refine the lattice",
+        "positive, so the cell has no volume to integrate (docs/theory.md §9.1). The cells are "
+        "those of the start and a cell beside a velocity jump of a few spacings cannot follow it "
+        "(docs/theory.md §9.12, §9.14): a finer lattice folds sooner, not later, and a smaller "
+        "time step does not help. Stop the run before this deformation (time.end), lower the "
+        "imposed velocity or load, or give the soil more strength where it flows",
         quality.inverted_cells, state.step, state.time,
         describe_point(state.configuration.stress_points,
                        static_cast<std::size_t>(quality.first_inverted_cell))));

@@ -155,8 +155,12 @@ void RkTaylorStep::bind_operators(const Configuration& configuration) {
     no_own_value_.assign(ns, -1);
     for (std::size_t i = 0; i < ns; ++i)
       every_node_[i] = static_cast<std::int32_t>(i);
-    build_adjoint_operator(operators_.nodes_to_points, configuration.stress_points.volume,
-                           every_node_, no_own_value_, node_average_);
+    try {
+      build_adjoint_operator(operators_.nodes_to_points, configuration.stress_points.volume,
+                             every_node_, no_own_value_, node_average_);
+    } catch (const UnreachedNode& unreached) {
+      throw RunError(describe_unreached_node(configuration.sph_nodes, unreached.node()));
+    }
     // Built once where the step's tables share their weights (a fixed lattice): so does their
     // adjoint, whose interior rows are alike too (docs/theory.md §4.7).
     if (!operators_.nodes_to_points.weight_start.empty()) {

@@ -214,8 +214,12 @@ void StepOperatorBuilder::build_step_tables(const Configuration& configuration, 
   for (std::size_t r = 0; r < ops.incomplete_nodes.size(); ++r)
     if (ops.node_to_boundary_row[static_cast<std::size_t>(ops.incomplete_nodes[r])] >= 0)
       own_column_[r] = n_points + ops.incomplete_nodes[r];
-  build_adjoint_operator(ops.nodes_to_points, points.volume, ops.incomplete_nodes, own_column_,
-                         ops.incomplete_closure);
+  try {
+    build_adjoint_operator(ops.nodes_to_points, points.volume, ops.incomplete_nodes, own_column_,
+                           ops.incomplete_closure);
+  } catch (const UnreachedNode& unreached) {
+    throw RunError(describe_unreached_node(nodes, unreached.node()));
+  }
 
   // Each node's stencil in parallel (build_rows). A boundary node's own half-step value is the
   // reference (docs/theory.md §2.2, step 2); where that leaves its compact stencil rank-deficient

@@ -176,12 +176,38 @@ double material_parameter(const CaseDescription& description, const std::string&
 }
 
 Rectangle rectangle_shape(const CaseDescription& description, std::size_t index) {
-  if (index >= description.geometry.shapes.size() ||
-      description.geometry.shapes[index].kind != ShapeSpec::Kind::Rectangle)
-    throw RunError(fmt::format("case {}: shape {} of the geometry is not a rectangle",
-                               description.name, index));
-  const std::vector<Vec3>& corners = description.geometry.shapes[index].vertices;
-  return {corners.at(0)[0], corners.at(0)[1], corners.at(1)[0], corners.at(1)[1]};
+  const auto not_a_rectangle = [&] {
+    return RunError(fmt::format("case {}: shape {} of the geometry is not a rectangle",
+                                description.name, index));
+  };
+  if (index >= description.geometry.shapes.size()) throw not_a_rectangle();
+  const ShapeSpec& shape = description.geometry.shapes[index];
+  const std::vector<Vec3>& corners = shape.vertices;
+  if (shape.kind == ShapeSpec::Kind::Rectangle)
+    return {corners.at(0)[0], corners.at(0)[1], corners.at(1)[0], corners.at(1)[1]};
+  if (shape.kind != ShapeSpec::Kind::Polygon) throw not_a_rectangle();
+  // A rectangle drawn as a polygon, with more vertices on its sides (to put mesh nodes where a
+  // triangle mesh needs them, e.g. at a load's edge): every vertex on the sides of the bounding
+  // box and the polygon's area that of the box.
+  Rectangle box{corners.at(0)[0], corners.at(0)[1], corners.at(0)[0], corners.at(0)[1]};
+  for (const Vec3& v : corners) {
+    box.x_min = std::min(box.x_min, v[0]);
+    box.x_max = std::max(box.x_max, v[0]);
+    box.y_min = std::min(box.y_min, v[1]);
+    box.y_max = std::max(box.y_max, v[1]);
+  }
+  double twice_area = 0.0;
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    const Vec3& a = corners[k];
+    const Vec3& b = corners[(k + 1) % corners.size()];
+    twice_area += a[0] * b[1] - b[0] * a[1];
+    if (a[0] != box.x_min && a[0] != box.x_max && a[1] != box.y_min && a[1] != box.y_max)
+      throw not_a_rectangle();
+  }
+  if (std::abs(0.5 * std::abs(twice_area) - box.width() * box.height()) >
+      1e-12 * box.width() * box.height())
+    throw not_a_rectangle();
+  return box;
 }
 
 namespace {

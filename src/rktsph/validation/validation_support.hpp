@@ -79,7 +79,9 @@ struct Rectangle {
   double height() const { return y_max - y_min; }
 };
 
-/// The shape `index` of the case's geometry, which must be a rectangle; RunError otherwise.
+/// The shape `index` of the case's geometry, which must be a rectangle, or a polygon that draws
+/// one (every vertex on the sides of its bounding box, its area the box's: a rectangle with more
+/// vertices on its sides, for a triangle mesh); RunError otherwise.
 Rectangle rectangle_shape(const CaseDescription& description, std::size_t index);
 
 /// The box of the group `name`; RunError if the case has no such group or it is not a box.

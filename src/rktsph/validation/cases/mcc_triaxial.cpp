@@ -229,8 +229,10 @@ std::vector<CheckResult> validate_mcc_triaxial(const ValidationContext& context)
   }
 
   if (context.report) {
-    const auto& first = static_cast<const PerzynaModifiedCamClay&>(
-        *sample_material(description, description.geometry.shapes.at(0).material));
+    // Held here: the material lives as long as this pointer, not the full expression.
+    const auto first_material =
+        sample_material(description, description.geometry.shapes.at(0).material);
+    const auto& first = static_cast<const PerzynaModifiedCamClay&>(*first_material);
     const double compression_ratio =
         references::critical_state_ratio_compression(first.parameters().friction_angle);
     double p_max = 0.0;
