@@ -213,7 +213,7 @@ TEST(TheoryReferences, EveryCitedSectionAndEquationExists) {
                                 << describe(findings);
 }
 
-TEST(TheoryReferences, NothingCitesADocumentOutsideTheRepository) {
+TEST(TheoryReferencesSlow, NothingCitesADocumentOutsideTheRepository) {
   const std::vector<Finding> findings = external_citations();
   EXPECT_TRUE(findings.empty()) << findings.size()
                                 << " lines cite documents that are not in the repository (cite "

@@ -124,7 +124,9 @@ Failure drive_to_failure(const PerzynaModifiedCamClay& clay, const StrainPath& p
       drive(clay, path, initial_point_state(clay, isotropic(initial_pressure)), options).back());
 }
 
-TEST(CamClayPressureDependent, UndrainedCompressionReachesCriticalStateOfClosedForm) {
+// *Slow*: a point driven slowly to the critical state (Perzyna overstress negligible) takes 9 s in
+// Release and 40 s under the sanitizers; CI runs it in the Release pass only.
+TEST(CamClayPressureDependentSlow, UndrainedCompressionReachesCriticalStateOfClosedForm) {
   const PerzynaModifiedCamClay clay = make_clay();
   for (const double ocr : {1.0, 1.5}) {
     const double p0 = kPreconsolidation / ocr;
@@ -144,7 +146,7 @@ TEST(CamClayPressureDependent, UndrainedCompressionReachesCriticalStateOfClosedF
   }
 }
 
-TEST(CamClayPressureDependent, DrainedTriaxialCompressionReachesCriticalStateOfClosedForm) {
+TEST(CamClayPressureDependentSlow, DrainedTriaxialCompressionReachesCriticalStateOfClosedForm) {
   const PerzynaModifiedCamClay clay = make_clay();
   const double ratio = references::critical_state_ratio_compression(kFrictionAngle);
   for (const double ocr : {1.0, 1.5}) {

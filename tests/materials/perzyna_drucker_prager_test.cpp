@@ -119,7 +119,7 @@ TEST(PerzynaDruckerPrager, TriaxialExtensionReachesMohrCoulombAtExtensionCorner)
   EXPECT_NEAR(ratio, test_support::triaxial_extension_dilatancy(kDilatancyAngle), 1e-6);
 }
 
-TEST(PerzynaDruckerPrager, PlaneStrainSimpleShearMatchesDavis) {
+TEST(PerzynaDruckerPragerSlow, PlaneStrainSimpleShearMatchesDavis) {
   // Simple shear at constant normal stress 100 kPa, eps_xx = eps_zz = 0: Davis's steady shear
   // stress for Mohr–Coulomb with coaxial non-associated flow, 63.3 kPa, and dilation
   // eps_yy_rate / gamma_xy_rate = tan psi. The plane-strain matching is built for exactly this

@@ -135,7 +135,7 @@ TEST(PerzynaMohrCoulomb, TriaxialExtensionReachesTheExactCorner) {
   EXPECT_NEAR(ratio, test_support::triaxial_extension_dilatancy(kDilatancyAngle), 1e-6);
 }
 
-TEST(PerzynaMohrCoulomb, PlaneStrainSimpleShearMatchesDavis) {
+TEST(PerzynaMohrCoulombSlow, PlaneStrainSimpleShearMatchesDavis) {
   // Davis's steady shear stress (63.3 kPa) and dilation eps_yy_rate/gamma_xy_rate = tan psi. The
   // face's overstress F = F0 (eps1 - eps3)_rate / gamma = 1e4 * 1e-3 / 10 = 1 Pa raises t by ~1
   // Pa: 1.6e-5 of tau; tolerance 5e-5. The transient decays on the elastic strain scale (0.008):
