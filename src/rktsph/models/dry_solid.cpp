@@ -8,6 +8,24 @@
 namespace rktsph {
 
 namespace {
+
+// Classical RK4 over the sub-steps of dv/dt = r + b(t) − ξ(t) v (the velocity part of the source,
+// docs/theory.md §2.8): `body(loads, k)` gives b at the sub-step's start (k = 0), middle (1) and
+// end (2), so that advance_velocities and its water-table form (eq. 6.8) share one integrator.
+template <class Loads, class Body>
+double integrate_velocity(double v, double r, const std::vector<Loads>& loads, int substeps,
+                          double delta, const Body& body) {
+  for (int s = 0; s < substeps; ++s) {
+    const Loads& l = loads[static_cast<std::size_t>(s)];
+    const double b0 = body(l, 0), b1 = body(l, 1), b2 = body(l, 2);
+    const double k1 = r + b0 - l.damping[0] * v;
+    const double k2 = r + b1 - l.damping[1] * (v + 0.5 * delta * k1);
+    const double k3 = r + b1 - l.damping[1] * (v + 0.5 * delta * k2);
+    const double k4 = r + b2 - l.damping[2] * (v + delta * k3);
+    v += delta / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+  }
+  return v;
+}
 constexpr int kMaxInternal = OverstressIntegrator::kMaxInternal;
 constexpr int kMaxNormals = SurfaceNormals::kMax;
 
@@ -266,16 +284,8 @@ void DrySolid::advance_velocities(std::int64_t n, const FieldArray& rate, double
     const double* rate_v = rate.field(layout_.velocity(a));
 #pragma omp parallel for schedule(static) if (n > kParallelThreshold)
     for (std::int64_t i = 0; i < n; ++i) {
-      double v = velocity[i];
-      const double r = frozen ? rate_v[i] : 0.0;
-      for (int s = 0; s < substeps; ++s) {
-        const SubstepLoads& l = loads[static_cast<std::size_t>(s)];
-        const double k1 = r + l.body[0][axis] - l.damping[0] * v;
-        const double k2 = r + l.body[1][axis] - l.damping[1] * (v + 0.5 * delta * k1);
-        const double k3 = r + l.body[1][axis] - l.damping[1] * (v + 0.5 * delta * k2);
-        const double k4 = r + l.body[2][axis] - l.damping[2] * (v + delta * k3);
-        v += delta / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-      }
+      double v = integrate_velocity(velocity[i], frozen ? rate_v[i] : 0.0, loads, substeps, delta,
+                                    [axis](const auto& l, int k) { return l.body[k][axis]; });
       if (!frozen) v += interval * rate_v[i];
       velocity[i] = v;
     }
@@ -303,19 +313,10 @@ void DrySolid::advance_weighted_velocities(std::int64_t n, const FieldArray& rat
       // body_a = scale b_a + cross b_y
       const double scale = axis == vertical ? weight[i] : 1.0;
       const double cross = axis == vertical ? 0.0 : seepage[i];
-      double v = velocity[i];
-      const double r = frozen ? rate_v[i] : 0.0;
-      for (int s = 0; s < substeps; ++s) {
-        const SubstepLoads& l = loads[static_cast<std::size_t>(s)];
-        double body[3];
-        for (std::size_t k = 0; k < 3; ++k)
-          body[k] = scale * l.body[k][axis] + cross * l.body[k][vertical];
-        const double k1 = r + body[0] - l.damping[0] * v;
-        const double k2 = r + body[1] - l.damping[1] * (v + 0.5 * delta * k1);
-        const double k3 = r + body[1] - l.damping[1] * (v + 0.5 * delta * k2);
-        const double k4 = r + body[2] - l.damping[2] * (v + delta * k3);
-        v += delta / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-      }
+      double v = integrate_velocity(velocity[i], frozen ? rate_v[i] : 0.0, loads, substeps, delta,
+                                    [=](const auto& l, int k) {
+                                      return scale * l.body[k][axis] + cross * l.body[k][vertical];
+                                    });
       if (!frozen) v += interval * rate_v[i];
       velocity[i] = v;
     }
