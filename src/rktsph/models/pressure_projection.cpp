@@ -98,8 +98,8 @@ void PressureProjection::build_operators(const NodeSets& nodes, const OperatorOp
   laplacian_ =
       build_laplacian(nodes.sph_nodes, cells, options, nodes.spacing, fluid.laplacian_scale);
   statistics_.laplacian_scale = laplacian_.scale;
-  checkerboard_rate_ = laplacian_checkerboard_rate(options.kernel, options.smoothing_length,
-                                                   nodes.spacing, nodes.dimension, laplacian_.scale);
+  checkerboard_rate_ = laplacian_checkerboard_rate(
+      options.kernel, options.smoothing_length, nodes.spacing, nodes.dimension, laplacian_.scale);
 }
 
 void PressureProjection::assemble(double dt) {

@@ -26,9 +26,9 @@ struct TriangleGradients {
 TriangleGradients triangle_gradients(const CellComplex& cells, const PointCloud& nodes,
                                      std::size_t cell) {
   if (cells.kind(cell) != CellKind::Triangle)
-    throw std::invalid_argument(fmt::format(
-        "the cell pore-pressure operators need triangles; cell {} is a {}", cell,
-        kind_name(cells.kind(cell))));
+    throw std::invalid_argument(
+        fmt::format("the cell pore-pressure operators need triangles; cell {} is a {}", cell,
+                    kind_name(cells.kind(cell))));
   const CellCorners c = cells.corner_positions(nodes, cell);
   TriangleGradients result;
   result.area = triangle::measure(c);
