@@ -75,9 +75,8 @@ NodeSets structured_mesh(int nx, int ny, double dx) {
 }
 
 TEST(CellLaplacian, IsSymmetricAndItsRowsSumToZero) {
-  const NodeSets nodes =
-      mesh(0.4, polygon({{0.0, 0.0, 0.0}, {5.3, 0.0, 0.0}, {3.1, 2.9, 0.0}, {0.0, 2.9, 0.0}},
-                        "soil"));
+  const NodeSets nodes = mesh(
+      0.4, polygon({{0.0, 0.0, 0.0}, {5.3, 0.0, 0.0}, {3.1, 2.9, 0.0}, {0.0, 2.9, 0.0}}, "soil"));
   const LaplacianMatrix laplacian = build_cell_laplacian(nodes.cells, nodes.sph_nodes, 0.0);
   const Eigen::SparseMatrix<double> ltilde = laplacian.weighted;
   const Eigen::SparseMatrix<double> transposed = ltilde.transpose();
@@ -106,8 +105,9 @@ TEST(CellLaplacian, LinearFieldHasNoLaplacianInsideAndItsOutwardFluxOnTheFaces) 
   const NodeSets nodes = mesh(0.3, rectangle(0.0, 0.0, x1, y1, "soil"));
   const PointCloud& points = nodes.sph_nodes;
   const LaplacianMatrix laplacian = build_cell_laplacian(nodes.cells, points, 0.0);
-  const Eigen::VectorXd result =
-      laplacian.weighted * sampled(points, [&](double x, double y) { return 2.0 + gx * x + gy * y; });
+  const Eigen::VectorXd result = laplacian.weighted * sampled(points, [&](double x, double y) {
+                                   return 2.0 + gx * x + gy * y;
+                                 });
   const double scale = laplacian.weighted.diagonal().cwiseAbs().maxCoeff() * 4.0;
   int interior = 0, face = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -149,9 +149,8 @@ TEST(CellLaplacian, LinearFieldHasNoLaplacianInsideAndItsOutwardFluxOnTheFaces) 
 }
 
 TEST(CellLaplacian, IsNegativeSemiDefiniteWithOnlyConstantsInItsNullSpace) {
-  const NodeSets nodes =
-      mesh(0.5, polygon({{0.0, 0.0, 0.0}, {4.1, 0.0, 0.0}, {2.3, 2.7, 0.0}, {0.0, 2.2, 0.0}},
-                        "soil"));
+  const NodeSets nodes = mesh(
+      0.5, polygon({{0.0, 0.0, 0.0}, {4.1, 0.0, 0.0}, {2.3, 2.7, 0.0}, {0.0, 2.2, 0.0}}, "soil"));
   const LaplacianMatrix laplacian = build_cell_laplacian(nodes.cells, nodes.sph_nodes, 0.0);
   const Eigen::MatrixXd dense = Eigen::MatrixXd(laplacian.weighted);
   ASSERT_LT(dense.rows(), 400);  // a dense eigen-decomposition stays cheap
@@ -233,9 +232,8 @@ TEST(CellLaplacian, ScaleMultipliesTheOperatorAndOtherCellsAreRefused) {
 }
 
 TEST(CellNodeGradient, IsExactForLinearFieldsAtEveryNodeAndSeesOnlyItsPatch) {
-  const NodeSets nodes =
-      mesh(0.4, polygon({{0.0, 0.0, 0.0}, {5.3, 0.0, 0.0}, {3.1, 2.9, 0.0}, {0.0, 2.9, 0.0}},
-                        "soil"));
+  const NodeSets nodes = mesh(
+      0.4, polygon({{0.0, 0.0, 0.0}, {5.3, 0.0, 0.0}, {3.1, 2.9, 0.0}, {0.0, 2.9, 0.0}}, "soil"));
   const PointCloud& points = nodes.sph_nodes;
   const WeightTable table = build_cell_node_gradient(nodes.cells, points);
   ASSERT_EQ(table.rows(), points.size());
