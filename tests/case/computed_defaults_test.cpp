@@ -10,6 +10,7 @@
 
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
+#include "rktsph/sph/cell_laplacian.hpp"
 
 namespace rktsph {
 namespace {
@@ -78,6 +79,23 @@ TEST(ComputedDefaults, LaplacianScaleIsTheOneThePressureProjectionUses) {
           << dimension << "D, spacing " << spacing;
     }
   }
+}
+
+TEST(ComputedDefaults, LaplacianScaleOnTrianglesIsOneAndTheProjectionTakesTheCellLaplacian) {
+  // Off a lattice the pressure solve assembles the cells' P1 Laplacian (docs/theory.md eq. 6.6),
+  // which needs no factor: the resolved case says 1, and the projection's matrix and volumes are
+  // the cell operator's.
+  CaseDescription description = block_case(2, "cubic_spline", 0.75, 0.25);
+  description.geometry.cells = CellLayout::Triangles;
+  EXPECT_EQ(default_laplacian_scale(description), 1.0);
+  const Simulation simulation(description);
+  ASSERT_NE(simulation.pressure_projection(), nullptr);
+  const LaplacianMatrix& used = simulation.pressure_projection()->laplacian();
+  const LaplacianMatrix cells =
+      build_cell_laplacian(simulation.nodes().cells, simulation.nodes().sph_nodes, 0.0);
+  EXPECT_EQ(used.scale, 1.0);
+  EXPECT_EQ((Eigen::SparseMatrix<double>(used.weighted - cells.weighted)).norm(), 0.0);
+  EXPECT_EQ(used.effective_volume, cells.effective_volume);
 }
 
 TEST(ComputedDefaults, ResolvedCaseHasTheComputedDefaultsAndReadsBackToThem) {

@@ -22,6 +22,9 @@ HourglassFields default_hourglass_fields(const NumericsSpec& numerics, int dimen
 }
 
 double default_laplacian_scale(const CaseDescription& description) {
+  // On triangles the pressure solve takes the cells' P1 Laplacian, consistent as it is (docs/
+  // theory.md eq. 6.6): a factor other than 1 would make L(|x|^2) differ from 2d.
+  if (description.geometry.cells == CellLayout::Triangles && description.dimension >= 2) return 1.0;
   // The arguments the pressure projection gives build_laplacian (time/rk_taylor_step.cpp,
   // step_operator_options), so that the value is the same to the last bit.
   const double spacing = description.geometry.spacing;

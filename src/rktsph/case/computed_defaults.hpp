@@ -20,7 +20,8 @@ bool has_wide_stencils(const NumericsSpec& numerics, int dimension);
 HourglassFields default_hourglass_fields(const NumericsSpec& numerics, int dimension);
 
 /// pore_fluid.laplacian_scale when unset: c such that the Laplacian of |x|^2 is 2d on a full
-/// interior stencil (docs/theory.md §6.2), for the case's kernel, h and spacing.
+/// interior stencil (docs/theory.md §6.3), for the case's kernel, h and spacing; 1 on triangles,
+/// whose cell Laplacian needs no factor (eq. 6.6).
 double default_laplacian_scale(const CaseDescription& description);
 
 }  // namespace rktsph

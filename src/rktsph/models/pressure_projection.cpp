@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "rktsph/core/parallel.hpp"
+#include "rktsph/sph/cell_laplacian.hpp"
 
 namespace rktsph {
 
@@ -47,21 +48,7 @@ PressureProjection::PressureProjection(const SaturatedVpw& model, const NodeSets
   const auto start = std::chrono::steady_clock::now();
   const std::size_t n = nodes.sph_nodes.size();
   const int d = nodes.dimension;
-  const CellList cells(nodes.sph_nodes, options.kernel.support_radius(options.smoothing_length));
-  StencilReport report;
-  gradient_ = build_collocated_gradient(nodes.sph_nodes, cells, options, {}, &report);
-  if (!report.degenerate_rows.empty())
-    throw RunError(fmt::format(
-        "the pore-pressure gradient cannot be formed at the SPH node at {}: the nodes around it "
-        "lie on one line or are too few (a strip of soil one node wide, or a lone node at a "
-        "corner), so the pressure solve has no stencil there; make every part of the soil at "
-        "least two spacings wide",
-        describe_point(nodes.sph_nodes, static_cast<std::size_t>(report.degenerate_rows.front()))));
-  laplacian_ =
-      build_laplacian(nodes.sph_nodes, cells, options, nodes.spacing, fluid.laplacian_scale);
-  statistics_.laplacian_scale = laplacian_.scale;
-  checkerboard_rate_ = laplacian_checkerboard_rate(options.kernel, options.smoothing_length,
-                                                   nodes.spacing, d, laplacian_.scale);
+  build_operators(nodes, options, fluid);
   density_.resize(n);
   for (std::size_t i = 0; i < n; ++i)
     density_[i] = model.material(nodes.node_material[i]).density();
@@ -85,6 +72,34 @@ PressureProjection::PressureProjection(const SaturatedVpw& model, const NodeSets
     velocity_parity_.push_back(vector_parity(a));
   assemble(dt);
   statistics_.assembly_seconds = seconds_since(start);
+}
+
+void PressureProjection::build_operators(const NodeSets& nodes, const OperatorOptions& options,
+                                         const PoreFluidSpec& fluid) {
+  // Off a lattice the Morris scale does not fit (docs/theory.md §6.3): the cells' P1 Laplacian and
+  // the lumped cell gradient (eqs. 6.6, 6.7) take its place, and the lattice's checkerboard
+  // stabilisation has nothing to act on (§6.6, refused on triangles at pore_fluid).
+  if (!nodes.on_lattice()) {
+    gradient_ = build_cell_node_gradient(nodes.cells, nodes.sph_nodes);
+    laplacian_ = build_cell_laplacian(nodes.cells, nodes.sph_nodes, fluid.laplacian_scale);
+    statistics_.laplacian_scale = laplacian_.scale;
+    return;
+  }
+  const CellList cells(nodes.sph_nodes, options.kernel.support_radius(options.smoothing_length));
+  StencilReport report;
+  gradient_ = build_collocated_gradient(nodes.sph_nodes, cells, options, {}, &report);
+  if (!report.degenerate_rows.empty())
+    throw RunError(fmt::format(
+        "the pore-pressure gradient cannot be formed at the SPH node at {}: the nodes around it "
+        "lie on one line or are too few (a strip of soil one node wide, or a lone node at a "
+        "corner), so the pressure solve has no stencil there; make every part of the soil at "
+        "least two spacings wide",
+        describe_point(nodes.sph_nodes, static_cast<std::size_t>(report.degenerate_rows.front()))));
+  laplacian_ =
+      build_laplacian(nodes.sph_nodes, cells, options, nodes.spacing, fluid.laplacian_scale);
+  statistics_.laplacian_scale = laplacian_.scale;
+  checkerboard_rate_ = laplacian_checkerboard_rate(
+      options.kernel, options.smoothing_length, nodes.spacing, nodes.dimension, laplacian_.scale);
 }
 
 void PressureProjection::assemble(double dt) {

@@ -5,6 +5,8 @@
 // by preconditioned conjugate gradients (warm start from p^n), then correct the velocity,
 //   v^{n+1} = v* - (alpha dt/rho) grad(p^{n+1} - beta p^n),                          (6.4)
 // and impose the boundary conditions again. The matrix is assembled once (dt is constant).
+// On a lattice the Laplacian is Morris's and the gradient the corrected collocated one (radius
+// search); off a lattice both come from the cells (cell_laplacian.hpp, docs/theory.md §6.3).
 //
 // In 2D the left-hand side also carries the checkerboard stabilisation S p^{n+1}
 // (docs/theory.md §6.6): S = sum over lattice cells c of w_c b_c b_c^T, b_c = (+1, -1, -1, +1) on
@@ -70,6 +72,10 @@ class PressureProjection final : public StepProjection {
   const Eigen::SparseMatrix<double>& stabilisation() const { return stabilisation_; }
 
  private:
+  /// The gradient, the Laplacian and its checkerboard rate: from a radius search on a lattice
+  /// (Morris, eq. 6.3), from the cells otherwise (eqs. 6.6, 6.7).
+  void build_operators(const NodeSets& nodes, const OperatorOptions& options,
+                       const PoreFluidSpec& fluid);
   void assemble(double dt);
   /// The entries of S (eq. 6.5) for this dt, every row and column; empty unless 2D and theta > 0.
   std::vector<Eigen::Triplet<double>> checkerboard_stabilisation(double dt) const;

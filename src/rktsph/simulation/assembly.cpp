@@ -166,6 +166,21 @@ std::pair<int, int> stress_indices(const std::string& component) {
   return {axis(component[0]), axis(component[1])};
 }
 
+// The pore-pressure checkerboard term S (docs/theory.md eq. 6.5) is built on the lattice's
+// squares: b_c is a square's twist, and lambda_cb the Morris Laplacian's eigenvalue on the
+// lattice checkerboard. On triangles neither exists, and nothing calls for S: the cells' P1
+// Laplacian (eq. 6.6) is zero only on constants and every triangle's gradient sees every nodal
+// pattern but a constant, so no p_w mode escapes both the solve and the momentum balance (§6.3).
+void refuse_checkerboard_on_triangles(const CaseDescription& description) {
+  if (!description.pore_fluid || description.pore_fluid->checkerboard_stabilisation <= 0.0) return;
+  throw InputError(description.pore_fluid->where, "pore_fluid.checkerboard_stabilisation",
+                   fmt::format("{}", description.pore_fluid->checkerboard_stabilisation),
+                   "the checkerboard stabilisation acts on the p_w checkerboard of a square "
+                   "lattice; on triangles the cells' Laplacian has no such mode (docs/theory.md "
+                   "§6.3, §6.6)",
+                   "0 or no key with geometry.cells: triangles");
+}
+
 }  // namespace
 
 double bending_mode_shape(double xi, double length) {
@@ -317,6 +332,7 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
                        "quadrilaterals; triangles have none (docs/theory.md §3.4)",
                        "0 or no key with geometry.cells: triangles");
     options.hourglass_stiffness = {};
+    refuse_checkerboard_on_triangles(description_);
   }
   options.hourglass_plastic_fraction = numerics.hourglass_plastic_fraction;
   options.strain_hourglass_stiffness =

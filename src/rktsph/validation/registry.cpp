@@ -44,6 +44,8 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_triangles_slope_elastic},
       {"triangles-strip-footing-elastic", "the Flamant strip on a triangle mesh (I28)",
        &validate_triangles_strip_footing_elastic},
+      {"triangles-vpw-consolidation", "Terzaghi consolidation on a triangle mesh (I28)",
+       &validate_triangles_vpw_consolidation},
       {"hanging-beam", "slender elastic beam hanging under ramped gravity, damped (V2-0)",
        &validate_hanging_beam},
       {"ld-bar1d-elastic", "1D elastic bar with the large-deformation model (5.3.2)",

@@ -126,7 +126,9 @@ const KeyTable<PoreFluidSpec>& pore_fluid_keys() {
              }},
       Key<P>{
           "laplacian_scale", "number", "–", "computed", documented_range(NumberRange::positive()),
-          "Factor of the Morris Laplacian; computed so that L(|x|²) = 2d in the interior.", false,
+          "Factor of the pore-pressure Laplacian; computed so that L(|x|²) = 2d in the interior "
+          "(1 on triangles).",
+          false,
           [](const YamlNode& node, P& fluid, Reading&) {
             fluid.laplacian_scale = to_number(node, NumberRange::positive());
           },

@@ -23,6 +23,10 @@
 // H^2/c_v = 99.6 s against H/c_p = 0.38 s (ratio 260 >= 50, docs/theory.md §7.2, S6: below it the
 // inertia of the dynamic model makes p_w lag Terzaghi). Quick variant: the column of §7.2,
 // H = 10 m, k = 1e-2 m/s (H^2/c_v = 7.3 s, H/c_p = 0.13 s, ratio 57), dx = 0.25 m.
+//
+// triangles-vpw-consolidation (issue 28) is the same column on a triangle mesh (docs/theory.md
+// §6.3): its nodes are not on rows, so a "row" is every node within dx/4 of the row's height
+// (add_row_probes), and its mean is compared with Terzaghi at the row's height.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -42,10 +46,9 @@ namespace rktsph {
 
 namespace {
 
-constexpr const char* kFolder = "vpw-consolidation";
-
 /// The column of the case file, read back so that the reference uses exactly its numbers.
 struct ConsolidationSetup : SaturatedColumn {  // height = H
+  std::string folder;                          // the case's folder, for messages
   double load = 0.0;                           // q > 0 (compression)
   double ramp = 0.0;                           // tau of the load ramp (0: sudden)
   double consolidation_coefficient = 0.0;
@@ -73,17 +76,18 @@ void read_load(const CaseDescription& description, ConsolidationSetup& setup) {
       return;
     }
   }
-  throw RunError(std::string("case ") + kFolder +
+  throw RunError("case " + setup.folder +
                  ": expected a ramp (from t = 0) or constant traction y on ymax");
 }
 
-ConsolidationSetup read_setup(const CaseDescription& description) {
+ConsolidationSetup read_setup(const CaseDescription& description, const std::string& folder) {
   ConsolidationSetup setup;
-  static_cast<SaturatedColumn&>(setup) = read_saturated_column(description, kFolder);
+  static_cast<SaturatedColumn&>(setup) = read_saturated_column(description, folder);
+  setup.folder = folder;
   read_load(description, setup);
   const PoreFluidSpec& fluid = *description.pore_fluid;
   if (fluid.biot_coefficient != 1.0)
-    throw RunError(std::string("case ") + kFolder + ": the Terzaghi reference needs alpha = 1");
+    throw RunError("case " + folder + ": the Terzaghi reference needs alpha = 1");
   setup.consolidation_coefficient = references::consolidation_coefficient(
       fluid.hydraulic_conductivity, fluid.density * fluid.gravity, setup.oedometric_modulus,
       setup.biot_modulus);
@@ -109,12 +113,13 @@ std::vector<double> add_column_probes(CaseDescription& description,
 }
 
 /// Linear interpolation of a probe column in time.
-double value_at(const ProbeTable& probes, const std::string& column, double time) {
+double value_at(const ProbeTable& probes, const ConsolidationSetup& setup,
+                const std::string& column, double time) {
   const auto& t = probes.time();
   const auto& v = probes.column(column);
   const auto after = std::lower_bound(t.begin(), t.end(), time);
   if (after == t.begin() || after == t.end())
-    throw RunError(fmt::format("{}: no probe samples around t = {} s", kFolder, time));
+    throw RunError(fmt::format("{}: no probe samples around t = {} s", setup.folder, time));
   const auto i = static_cast<std::size_t>(after - t.begin());
   return v[i - 1] + (v[i] - v[i - 1]) * (time - t[i - 1]) / (t[i] - t[i - 1]);
 }
@@ -128,7 +133,8 @@ double isochrone_error(const ProbeTable& probes, const ConsolidationSetup& setup
     const double depth = setup.base + setup.height - heights[row];
     const double reference = setup.initial_pressure *
                              references::terzaghi_pressure_ratio(depth / setup.height, time_factor);
-    const double value = value_at(probes, fmt::format("vpw_row_{}.pore_pressure", row), time);
+    const double value =
+        value_at(probes, setup, fmt::format("vpw_row_{}.pore_pressure", row), time);
     error = std::max(error, std::abs(value - reference) / setup.load);
   }
   return error;
@@ -141,7 +147,8 @@ double pressure_degree(const ProbeTable& probes, const ConsolidationSetup& setup
   double integral = 0.0;
   for (std::size_t row = 0; row < rows; ++row) {
     const double weight = (row == 0 || row + 1 == rows) ? 0.5 : 1.0;
-    integral += weight * value_at(probes, fmt::format("vpw_row_{}.pore_pressure", row), time);
+    integral +=
+        weight * value_at(probes, setup, fmt::format("vpw_row_{}.pore_pressure", row), time);
   }
   const double mean = integral * setup.spacing / setup.height;
   return 1.0 - mean / setup.initial_pressure;
@@ -150,7 +157,8 @@ double pressure_degree(const ProbeTable& probes, const ConsolidationSetup& setup
 /// |s - s_ref| / s_ref with s = -u_y of the top.
 double settlement_error(const ProbeTable& probes, const ConsolidationSetup& setup,
                         double time_factor) {
-  const double settlement = -value_at(probes, "vpw_top.displacement_y", setup.time_at(time_factor));
+  const double settlement =
+      -value_at(probes, setup, "vpw_top.displacement_y", setup.time_at(time_factor));
   const double reference = references::terzaghi_settlement(
       setup.load, setup.height, setup.oedometric_modulus, setup.biot_modulus, time_factor);
   return relative_error(settlement, reference);
@@ -186,7 +194,8 @@ void report_consolidation(ValidationReport& report, const CaseDescription& descr
   for (const double time_factor : time_factors) {
     Series measured{fmt::format("SPH, Tv = {:g}", time_factor), {}, heights, "points"};
     for (std::size_t row = 0; row < heights.size(); ++row)
-      measured.x.push_back(1e-3 * value_at(probes, fmt::format("vpw_row_{}.pore_pressure", row),
+      measured.x.push_back(1e-3 * value_at(probes, setup,
+                                           fmt::format("vpw_row_{}.pore_pressure", row),
                                            setup.time_at(time_factor)));
     Series exact{fmt::format("Terzaghi, Tv = {:g}", time_factor), {}, {}, "dashed"};
     for (int i = 0; i < kProfileSamples; ++i) {
@@ -264,7 +273,9 @@ void report_consolidation(ValidationReport& report, const CaseDescription& descr
       "ramped in over {:.3g} s. Reference: the Terzaghi series with the Biot-consistent initial "
       "pressure p0 = q Q/(M + Q) = {:.4g} kPa and c_v = (k/gamma_w)/(1/M + 1/Q) = {:.4g} m2/s "
       "(Tv = 1 at t = {:.4g} s). The isochrones are the mean p_w of each lattice row at Tv = 0.1, "
-      "0.3 and 1 (the checked times); U is computed from the same rows by the trapezoidal rule.",
+      "0.3 and 1 (the checked times; on triangles, of the nodes within dx/4 of each row's height); "
+      "U "
+      "is computed from the same rows by the trapezoidal rule.",
       height, setup.spacing, 1e-3 * setup.load, setup.ramp, 1e-3 * p0,
       setup.consolidation_coefficient, setup.time_at(1.0)));
   report.add_picture({"pore_pressure_tv03", run_directory.string(), "pore_pressure", -1,
@@ -274,9 +285,10 @@ void report_consolidation(ValidationReport& report, const CaseDescription& descr
                       "the width."});
 }
 
-}  // namespace
-
-std::vector<CheckResult> validate_vpw_consolidation(const ValidationContext& context) {
+/// The checks of a column case in `folder`: vpw-consolidation on the lattice, or its triangle
+/// mesh (the quick variant's overrides are the same keys in both files).
+std::vector<CheckResult> validate_consolidation(const ValidationContext& context,
+                                                const std::string& folder) {
   std::vector<CaseOverride> overrides;
   if (context.quick)
     overrides = {{"geometry.spacing", "0.25"},
@@ -284,8 +296,8 @@ std::vector<CheckResult> validate_vpw_consolidation(const ValidationContext& con
                  {"pore_fluid.hydraulic_conductivity", "1.0e-2"},
                  {"groups.probe.point", "[1.0, 7.0]"},
                  {"boundary_conditions.3.traction.y.duration", "0.0144"}};  // 5 steps again
-  CaseDescription description = load_bundled_case(context, kFolder, overrides);
-  const ConsolidationSetup setup = read_setup(description);
+  CaseDescription description = load_bundled_case(context, folder, overrides);
+  const ConsolidationSetup setup = read_setup(description, folder);
   const std::vector<double> heights = add_column_probes(description, setup);
   const double time_factors[3] = {0.1, 0.3, 1.0};
   // Every step is sampled (probe_interval 0): the checks interpolate linearly in time between
@@ -305,7 +317,8 @@ std::vector<CheckResult> validate_vpw_consolidation(const ValidationContext& con
                                references::degree_of_consolidation(time_factors[k])));
     settlement = std::max(settlement, settlement_error(probes, setup, time_factors[k]));
   }
-  const double base_pressure = value_at(probes, "vpw_row_0.pore_pressure", setup.time_at(0.01));
+  const double base_pressure =
+      value_at(probes, setup, "vpw_row_0.pore_pressure", setup.time_at(0.01));
   if (context.report)
     report_consolidation(*context.report, description, run_directory, probes, setup, heights,
                          time_factors);
@@ -322,6 +335,16 @@ std::vector<CheckResult> validate_vpw_consolidation(const ValidationContext& con
       check_at_most("initial_pressure_error", relative_error(base_pressure, setup.initial_pressure),
                     0.0, 0.02, "fraction"),
   };
+}
+
+}  // namespace
+
+std::vector<CheckResult> validate_vpw_consolidation(const ValidationContext& context) {
+  return validate_consolidation(context, "vpw-consolidation");
+}
+
+std::vector<CheckResult> validate_triangles_vpw_consolidation(const ValidationContext& context) {
+  return validate_consolidation(context, "triangles-vpw-consolidation");
 }
 
 }  // namespace rktsph
