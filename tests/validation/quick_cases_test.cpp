@@ -63,17 +63,6 @@ const std::map<std::string, std::map<std::string, std::string>>& known_open_chec
         {"period_change_finest",
          "3 and 4 cells across the plate are far from converged: their periods differ by 3 % "
          "(1.1 % between 6 and 8 cells in the full case; docs/theory.md §9.11)"}}},
-      {"triangles-slope-elastic",
-       {{"face_oddeven_ratio",
-         "on the quick mesh (edges up to 1 m, the face split every 0.51 m) single face nodes "
-         "lag their neighbours by up to 0.07 of the largest face displacement: the soft mode of "
-         "the nodal strain average on triangles, for which no zero-energy control is built yet "
-         "(0.017 at the full case's 0.5 m; docs/theory.md §4.8)"}}},
-      {"triangles-strip-footing-elastic",
-       {{"settlement_oddeven_ratio",
-         "the surface settlement on triangles keeps a node-to-node part of 0.039 of its largest "
-         "value (0.040 on the full case): the soft mode of the nodal strain average on "
-         "triangles, for which no zero-energy control is built yet (docs/theory.md §4.8)"}}},
       {"vpw-vertical-cut-footing", {{"contact_pressure_oddeven_ratio", plastic_edge}}},
       {"ld-vertical-cut-footing", {{"contact_pressure_oddeven_ratio", dry_plastic_edge}}},
       {"ld-slope-cohesive",

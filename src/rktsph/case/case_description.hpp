@@ -200,6 +200,9 @@ enum class HourglassFields {
 /// in cells of elastic materials, and of viscoplastic ones, where it must not resist a shear band.
 inline constexpr double kDefaultHourglassStiffness = 1.0;
 inline constexpr double kDefaultViscoplasticHourglassStiffness = 0.05;
+/// beta of the patch strain stiffness (docs/theory.md eq. 3.12) on triangle meshes when the case
+/// does not set it; 0 on a lattice, whose quadrilaterals the cells' hourglass stiffness controls.
+inline constexpr double kDefaultTrianglePatchStiffness = 0.01;
 
 struct NumericsSpec {
   KernelType kernel = KernelType::CubicSpline;
@@ -224,6 +227,9 @@ struct NumericsSpec {
   double hourglass_plastic_fraction = 0.0;
   /// epsilon_s of the strain hourglass stiffness (theory eq. 3.5), at most (1 - C^2)/C^2; 0 = off
   double strain_hourglass_stiffness = 0.0;
+  /// beta of the patch strain stiffness (theory eq. 3.12); unset: kDefaultTrianglePatchStiffness
+  /// on triangles, 0 (off) on a lattice
+  std::optional<double> patch_stiffness;
   double artificial_viscosity = 0.0;  ///< alpha of docs/theory.md §2.7, 0 = off
   SourceLocation where;
 };

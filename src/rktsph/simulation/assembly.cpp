@@ -34,6 +34,24 @@ double strain_hourglass_stiffness(const NumericsSpec& numerics, double courant) 
   return epsilon;
 }
 
+// beta of docs/theory.md eq. 3.12: by default on triangles only; one strain control at a time.
+double patch_stiffness(const CaseDescription& description) {
+  const NumericsSpec& numerics = description.numerics;
+  const double beta = numerics.patch_stiffness.value_or(
+      description.geometry.cells == CellLayout::Triangles && description.dimension == 2
+          ? kDefaultTrianglePatchStiffness
+          : 0.0);
+  if (beta > 0.0 && numerics.strain_hourglass_stiffness > 0.0)
+    throw InputError(numerics.where, "numerics.hourglass.strain_stiffness",
+                     fmt::format("{}", numerics.strain_hourglass_stiffness),
+                     fmt::format("the strain hourglass stiffness and the patch strain stiffness "
+                                 "(patch_stiffness {}{}) are two forms of one control "
+                                 "(docs/theory.md §3.4); a case takes one",
+                                 beta, numerics.patch_stiffness ? "" : ", the triangles' default"),
+                     "0, or numerics.hourglass.patch_stiffness: 0");
+  return beta;
+}
+
 // epsilon of docs/theory.md eq. 3.3, by default on in 2D with the mean-velocity stress update (1,
 // lowered to 0.05 around viscoplastic flow by eq. 3.10). With the half-step update the nodal stress
 // and the hourglass forces keep two memories of the motion, and a loaded body creeps while they
@@ -337,6 +355,11 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
   options.hourglass_plastic_fraction = numerics.hourglass_plastic_fraction;
   options.strain_hourglass_stiffness =
       strain_hourglass_stiffness(numerics, time_step_ * model_->max_wave_speed() / courant_length_);
+  const double patch = patch_stiffness(description_);
+  if (patch > 0.0) {
+    options.strain_hourglass_stiffness = patch;
+    options.strain_control = StrainControl::Patch;
+  }
   options.artificial_viscosity = numerics.artificial_viscosity;
   state_.configuration = reference_configuration(nodes_, options.h_over_dx * nodes_.spacing);
   if (!nodes_.on_lattice())  // each point's h from its cells (docs/theory.md §4.8)
@@ -423,7 +446,7 @@ void Assembly::initialise_state() {
   state_.fields = FieldArray(model_->field_count(), n);
   state_.internal = FieldArray(model_->internal_count(), n);
   state_.displacement = FieldArray(d, n);
-  if (step_->strain_hourglass_stiffness().active()) state_.strain = FieldArray(3, n);
+  if (step_->strain_hourglass_stiffness().needs_received_strain()) state_.strain = FieldArray(3, n);
   if (step_->hourglass_stiffness().active())
     state_.hourglass_force = FieldArray(2, nodes_.stress_points.size());
   for (std::size_t i = 0; i < n; ++i) {

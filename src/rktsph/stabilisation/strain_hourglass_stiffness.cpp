@@ -16,9 +16,10 @@ StrainHourglassStiffness::StrainHourglassStiffness(
     const PhysicsModel& model, const WeightTable& to_points, std::span<const double> point_volume,
     std::span<const std::uint8_t> mirror_axes,
     std::span<const std::pair<std::int32_t, int>> constrained,
-    std::span<const std::int32_t> node_material, double epsilon) {
+    std::span<const std::int32_t> node_material, double epsilon, StrainControl form) {
   if (model.dimension() != 2 || !(epsilon > 0.0)) return;
   epsilon_ = epsilon;
+  form_ = form;
   const std::size_t node_count = mirror_axes.size();
   std::vector<std::int32_t> targets(node_count);
   std::iota(targets.begin(), targets.end(), 0);
@@ -33,6 +34,9 @@ StrainHourglassStiffness::StrainHourglassStiffness(
   strain_parity_ = {tensor_parity(0, 0), tensor_parity(1, 1), tensor_parity(0, 1)};
   stress_field_ = {model.stress_field(0, 0), model.stress_field(1, 1), model.stress_field(0, 1)};
   std::vector<std::int32_t> slot(node_count, -1);
+  // The patch form (eq. 3.12) measures strains against the cells' own patch means, not against
+  // what the nodal stress received, so faces need no rule there.
+  if (form == StrainControl::Patch) constrained = {};
   for (const auto& [node, field] : constrained) {
     const auto k = std::find(stress_field_.begin(), stress_field_.end(), field);
     if (k == stress_field_.end()) continue;  // sigma_zz: no in-plane strain of its own
@@ -125,24 +129,62 @@ void StrainHourglassStiffness::remove_received_stress(const WeightTable& to_poin
     values[static_cast<std::size_t>(k)] -= received[static_cast<std::size_t>(k)];
 }
 
+void StrainHourglassStiffness::symmetric_part(const FieldArray& gradient,
+                                              const std::array<int, 4>& slot) {
+  // slot: the xx, xy, yx, yy entries of the gradient.
+  const std::size_t points = strain_.point_count();
+  for (std::size_t i = 0; i < points; ++i) {
+    strain_(kXX, i) = gradient(slot[0], i);
+    strain_(kYY, i) = gradient(slot[3], i);
+    strain_(kXY, i) = 0.5 * (gradient(slot[1], i) + gradient(slot[2], i));
+  }
+}
+
+void StrainHourglassStiffness::subtract_interpolated_node_strain(const WeightTable& to_points) {
+  apply_operator(to_points, node_strain_, strain_parity_, &point_strain_, nullptr);
+  for (std::size_t k = 0; k < strain_.data().size(); ++k)
+    strain_.data()[k] -= point_strain_.data()[k];
+}
+
+void StrainHourglassStiffness::elastic_stress_of_strain(const PhysicsModel& model,
+                                                        std::span<const std::int32_t> material) {
+  // tau = epsilon D : r, the model's stress rate for the "velocity gradient" epsilon r.
+  const int vx = model.velocity_field(0), vy = model.velocity_field(1);
+  const std::size_t points = strain_.point_count();
+  for (std::size_t i = 0; i < points; ++i) {
+    model_gradient_(vx * 2 + 0, i) = epsilon_ * strain_(kXX, i);
+    model_gradient_(vy * 2 + 1, i) = epsilon_ * strain_(kYY, i);
+    model_gradient_(vx * 2 + 1, i) = epsilon_ * strain_(kXY, i);
+    model_gradient_(vy * 2 + 0, i) = epsilon_ * strain_(kXY, i);
+  }
+  model.flux_rate(material, model_gradient_, rate_);
+  for (int k = 0; k < 3; ++k)
+    std::copy_n(rate_.field(stress_field_[static_cast<std::size_t>(k)]), points, strain_.field(k));
+}
+
+void StrainHourglassStiffness::add_to(FieldArray& point_values) const {
+  const std::size_t points = strain_.point_count();
+  for (int k = 0; k < 3; ++k) {
+    const double* tau = strain_.field(k);
+    double* value = point_values.field(stress_field_[static_cast<std::size_t>(k)]);
+    for (std::size_t p = 0; p < points; ++p)
+      value[p] += tau[p];
+  }
+}
+
 void StrainHourglassStiffness::add_stress(const PhysicsModel& model, const WeightTable& to_points,
                                           std::span<const std::int32_t> point_material,
                                           const FieldArray& displacement, const FieldArray& strain,
                                           const FieldArray& point_gradient, double dt,
                                           const FieldArray& fields, FieldArray& point_values) {
   if (!active()) return;
-  const auto points = static_cast<std::int64_t>(to_points.rows());
+  if (form_ == StrainControl::Patch) {
+    add_patch_stress(model, to_points, point_material, displacement, point_values);
+    return;
+  }
   const int vx = model.velocity_field(0), vy = model.velocity_field(1);
-  auto symmetric = [&](const FieldArray& gradient, int xx, int xy, int yx, int yy) {
-    for (std::int64_t p = 0; p < points; ++p) {
-      const auto i = static_cast<std::size_t>(p);
-      strain_(kXX, i) = gradient(xx, i);
-      strain_(kYY, i) = gradient(yy, i);
-      strain_(kXY, i) = 0.5 * (gradient(xy, i) + gradient(yx, i));
-    }
-  };
   // e^{n+1/2} = e^n + dt/2 A(G v^n): the strain the nodal stress has received, half a step on.
-  symmetric(point_gradient, vx * 2, vx * 2 + 1, vy * 2, vy * 2 + 1);
+  symmetric_part(point_gradient, {vx * 2, vx * 2 + 1, vy * 2, vy * 2 + 1});
   average_to_nodes(strain_);
   const std::vector<double>& integral = strain.data();
   std::vector<double>& received = node_strain_.data();
@@ -152,34 +194,33 @@ void StrainHourglassStiffness::add_stress(const PhysicsModel& model, const Weigh
     apply_face_rule(rule, &fields, false);
   // r = G u^{n+1/2} - I P(e^{n+1/2}) (eq. 3.5).
   apply_operator(to_points, displacement, displacement_parity_, nullptr, &gradient_);
-  symmetric(gradient_, 0, 1, 2, 3);
-  apply_operator(to_points, node_strain_, strain_parity_, &point_strain_, nullptr);
-  for (std::size_t k = 0; k < strain_.data().size(); ++k)
-    strain_.data()[k] -= point_strain_.data()[k];
-  // tau = epsilon D : r, the model's stress rate for the "velocity gradient" epsilon r.
-  for (std::int64_t p = 0; p < points; ++p) {
-    const auto i = static_cast<std::size_t>(p);
-    model_gradient_(vx * 2 + 0, i) = epsilon_ * strain_(kXX, i);
-    model_gradient_(vy * 2 + 1, i) = epsilon_ * strain_(kYY, i);
-    model_gradient_(vx * 2 + 1, i) = epsilon_ * strain_(kXY, i);
-    model_gradient_(vy * 2 + 0, i) = epsilon_ * strain_(kXY, i);
-  }
-  model.flux_rate(point_material, model_gradient_, rate_);
-  for (int k = 0; k < 3; ++k)
-    std::copy_n(rate_.field(stress_field_[static_cast<std::size_t>(k)]), points, strain_.field(k));
+  symmetric_part(gradient_, {0, 1, 2, 3});
+  subtract_interpolated_node_strain(to_points);
+  elastic_stress_of_strain(model, point_material);
   remove_received_stress(to_points, strain_);  // eq. 3.6
-  for (int k = 0; k < 3; ++k) {
-    const double* tau = strain_.field(k);
-    double* value = point_values.field(stress_field_[static_cast<std::size_t>(k)]);
-    for (std::int64_t p = 0; p < points; ++p)
-      value[p] += tau[p];
-  }
+  add_to(point_values);
+}
+
+void StrainHourglassStiffness::add_patch_stress(const PhysicsModel& model,
+                                                const WeightTable& to_points,
+                                                std::span<const std::int32_t> point_material,
+                                                const FieldArray& displacement,
+                                                FieldArray& point_values) {
+  // Eq. 3.12: r = G u - I A G u, each cell's strain less the mean of its corners' patch means;
+  // tau = beta D : r is the gradient of the patch variance energy as it stands, since the
+  // deviations from a patch's mean have zero weighted sum over the patch.
+  apply_operator(to_points, displacement, displacement_parity_, nullptr, &gradient_);
+  symmetric_part(gradient_, {0, 1, 2, 3});
+  average_to_nodes(strain_);
+  subtract_interpolated_node_strain(to_points);
+  elastic_stress_of_strain(model, point_material);
+  add_to(point_values);
 }
 
 void StrainHourglassStiffness::integrate_strain(const PhysicsModel& model,
                                                 const FieldArray& node_gradient, double dt,
                                                 FieldArray& strain) const {
-  if (!active()) return;
+  if (!needs_received_strain()) return;
   const int vx = model.velocity_field(0), vy = model.velocity_field(1);
   const std::size_t nodes = strain.point_count();
   for (std::size_t i = 0; i < nodes; ++i) {

@@ -33,6 +33,11 @@ namespace rktsph {
 
 class PhysicsModel;
 
+/// What the strain of a stress point is measured against (docs/theory.md §3.4): the strain the
+/// nodal stress received (eqs. 3.5-3.8, for the lattice's strain modes), or the mean of its
+/// corners' patches (eq. 3.12, the soft modes of the nodal strain average on triangles).
+enum class StrainControl { Received, Patch };
+
 class StrainHourglassStiffness {
  public:
   StrainHourglassStiffness() = default;
@@ -45,9 +50,12 @@ class StrainHourglassStiffness {
                            std::span<const double> point_volume,
                            std::span<const std::uint8_t> mirror_axes,
                            std::span<const std::pair<std::int32_t, int>> constrained,
-                           std::span<const std::int32_t> node_material, double epsilon);
+                           std::span<const std::int32_t> node_material, double epsilon,
+                           StrainControl form = StrainControl::Received);
 
   bool active() const { return epsilon_ > 0.0; }
+  /// The received form integrates e, the strain the nodal stress received (State::strain).
+  bool needs_received_strain() const { return active() && form_ == StrainControl::Received; }
 
   /// The imposed stresses at t = 0 (the state after its conditions), against which eq. 3.8
   /// measures the imposed stress increments.
@@ -78,8 +86,20 @@ class StrainHourglassStiffness {
   // x <- x - I P*(A x) (eq. 3.6).
   void remove_received_stress(const WeightTable& to_points, FieldArray& x);
   void apply_face_rule(const ConstrainedNode& rule, const FieldArray* fields, bool transpose);
+  // strain_ <- sym of the 2 x 2 gradient whose xx, xy, yx, yy entries are the fields `slot`.
+  void symmetric_part(const FieldArray& gradient, const std::array<int, 4>& slot);
+  // strain_ <- strain_ - I node_strain_.
+  void subtract_interpolated_node_strain(const WeightTable& to_points);
+  // strain_ <- epsilon D : strain_ with each stress point's elastic moduli.
+  void elastic_stress_of_strain(const PhysicsModel& model, std::span<const std::int32_t> material);
+  // The model's stress fields of point_values += strain_.
+  void add_to(FieldArray& point_values) const;
+  void add_patch_stress(const PhysicsModel& model, const WeightTable& to_points,
+                        std::span<const std::int32_t> point_material,
+                        const FieldArray& displacement, FieldArray& point_values);
 
   double epsilon_ = 0.0;
+  StrainControl form_ = StrainControl::Received;
   AdjointOperator node_average_;       // A: b_Pn = V_P w_Pn / V_n over every node
   std::array<int, 3> stress_field_{};  // the model's xx, yy, xy fields
   std::vector<Parity> displacement_parity_;

@@ -17,6 +17,7 @@
 #include "rktsph/sph/neighbour_search.hpp"
 #include "rktsph/sph/operators.hpp"
 #include "rktsph/stabilisation/hourglass_stiffness.hpp"
+#include "rktsph/stabilisation/strain_hourglass_stiffness.hpp"
 
 namespace rktsph {
 
@@ -36,8 +37,9 @@ struct StepOptions {
   StressUpdate stress_update = StressUpdate::HalfStep;
   HourglassStrength hourglass_stiffness;    // epsilon of docs/theory.md eq. 3.3; 0 = off
   double hourglass_plastic_fraction = 0.0;  // psi of eq. 3.9, in flowing cells
-  double strain_hourglass_stiffness = 0.0;  // epsilon_s of docs/theory.md eq. 3.5; 0 = off
-  double artificial_viscosity = 0.0;        // alpha of docs/theory.md §2.7; 0 = off
+  double strain_hourglass_stiffness = 0.0;  // epsilon_s of eq. 3.5 or beta of eq. 3.12; 0 = off
+  StrainControl strain_control = StrainControl::Received;  // which of the two (theory §3.4)
+  double artificial_viscosity = 0.0;                       // alpha of docs/theory.md §2.7; 0 = off
 };
 
 /// When the operators are built (docs/theory.md §2.6).

@@ -43,6 +43,12 @@ const KeyTable<NumericsSpec>& hourglass_keys() {
                     "ψ of eq. 3.9: the fraction of the hourglass stiffness acting in flow."),
       number_key<N>("strain_stiffness", &N::strain_hourglass_stiffness, kUnitInterval, "–",
                     "ε_s of the strain hourglass stiffness (eqs. 3.5–3.8); 0 = off."),
+      optional_number_key<N>(
+          "patch_stiffness", &N::patch_stiffness, kUnitInterval, "–",
+          fmt::format("{} with geometry.cells: triangles, 0 on a lattice",
+                      documented_number(kDefaultTrianglePatchStiffness)),
+          "β of the patch strain stiffness (docs/theory.md eq. 3.12): the soft modes of the "
+          "nodal strain average on triangles; 0 = off. Not together with strain_stiffness."),
       computed_choice_key<N, HourglassFields>(
           "fields", &N::hourglass_fields, kHourglassFields,
           "velocity on compact stencils, all on wider ones",
