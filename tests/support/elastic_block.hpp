@@ -18,6 +18,7 @@ struct ElasticBlock {
   std::string groups;                   ///< e.g. "{load: {box: {...}}}"; empty = none
   std::string numerics = "{}";
   std::string plane = "strain";
+  std::string cells = "lattice";  ///< geometry.cells: lattice or triangles
 
   static std::string rectangle(double width, double height) {
     return "[{rectangle: {min: [0, 0], max: [" + std::to_string(width) + ", " +
@@ -26,7 +27,7 @@ struct ElasticBlock {
 
   std::string text() const {
     std::string yaml = "name: block\ndimension: 2\nplane: " + plane +
-                       "\ngeometry:\n  spacing: " + std::to_string(spacing) +
+                       "\ngeometry:\n  cells: " + cells + "\n  spacing: " + std::to_string(spacing) +
                        "\n  shapes: " + shapes +
                        "\nmaterials:\n  soil: {model: linear_elastic, density: 2000.0, "
                        "young_modulus: 1.0e7, poisson_ratio: 0.3}\n";

@@ -357,6 +357,12 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
       strain_hourglass_stiffness(numerics, time_step_ * model_->max_wave_speed() / courant_length_);
   const double patch = patch_stiffness(description_);
   if (patch > 0.0) {
+    if (registered_->operator_policy != OperatorPolicy::ReferenceConfiguration)
+      throw InputError(numerics.where, "numerics.hourglass.patch_stiffness",
+                       fmt::format("{}", patch),
+                       "the patch strain stiffness fits the cells of the reference "
+                       "configuration (docs/theory.md eq. 3.13); this model moves its points",
+                       "0 with a moving configuration");
     options.strain_hourglass_stiffness = patch;
     options.strain_control = StrainControl::Patch;
   }

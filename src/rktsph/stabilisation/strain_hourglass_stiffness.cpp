@@ -16,10 +16,26 @@ StrainHourglassStiffness::StrainHourglassStiffness(
     const PhysicsModel& model, const WeightTable& to_points, std::span<const double> point_volume,
     std::span<const std::uint8_t> mirror_axes,
     std::span<const std::pair<std::int32_t, int>> constrained,
-    std::span<const std::int32_t> node_material, double epsilon, StrainControl form) {
+    std::span<const std::int32_t> node_material, const NodeSets& nodes, double epsilon,
+    StrainControl form) {
   if (model.dimension() != 2 || !(epsilon > 0.0)) return;
   epsilon_ = epsilon;
   form_ = form;
+  displacement_parity_ = {vector_parity(0), vector_parity(1)};
+  strain_parity_ = {tensor_parity(0, 0), tensor_parity(1, 1), tensor_parity(0, 1)};
+  stress_field_ = {model.stress_field(0, 0), model.stress_field(1, 1), model.stress_field(0, 1)};
+  const std::size_t points = to_points.rows();
+  gradient_ = FieldArray(4, points);
+  strain_ = FieldArray(3, points);
+  point_strain_ = FieldArray(3, points);
+  // Only the four velocity-gradient slots are ever written (add_stress); the others stay zero.
+  model_gradient_ = FieldArray(model.field_count() * 2, points);
+  rate_ = FieldArray(model.field_count(), points);
+  if (form == StrainControl::Patch) {
+    patch_fit_ = PatchFit(nodes.cells, nodes.sph_nodes, nodes.stress_points, mirror_axes,
+                          strain_parity_);
+    return;
+  }
   const std::size_t node_count = mirror_axes.size();
   std::vector<std::int32_t> targets(node_count);
   std::iota(targets.begin(), targets.end(), 0);
@@ -30,13 +46,7 @@ StrainHourglassStiffness::StrainHourglassStiffness(
       mirror_nodes_.push_back(static_cast<std::int32_t>(n));
       mirror_bits_.push_back(mirror_axes[n]);
     }
-  displacement_parity_ = {vector_parity(0), vector_parity(1)};
-  strain_parity_ = {tensor_parity(0, 0), tensor_parity(1, 1), tensor_parity(0, 1)};
-  stress_field_ = {model.stress_field(0, 0), model.stress_field(1, 1), model.stress_field(0, 1)};
   std::vector<std::int32_t> slot(node_count, -1);
-  // The patch form (eq. 3.12) measures strains against the cells' own patch means, not against
-  // what the nodal stress received, so faces need no rule there.
-  if (form == StrainControl::Patch) constrained = {};
   for (const auto& [node, field] : constrained) {
     const auto k = std::find(stress_field_.begin(), stress_field_.end(), field);
     if (k == stress_field_.end()) continue;  // sigma_zz: no in-plane strain of its own
@@ -50,14 +60,7 @@ StrainHourglassStiffness::StrainHourglassStiffness(
     constrained_[static_cast<std::size_t>(slot[static_cast<std::size_t>(node)])]
         .imposed[static_cast<std::size_t>(k - stress_field_.begin())] = true;
   }
-  const std::size_t points = to_points.rows();
-  gradient_ = FieldArray(4, points);
-  strain_ = FieldArray(3, points);
   node_strain_ = FieldArray(3, node_count);
-  point_strain_ = FieldArray(3, points);
-  // Only the four velocity-gradient slots are ever written (add_stress); the others stay zero.
-  model_gradient_ = FieldArray(model.field_count() * 2, points);
-  rate_ = FieldArray(model.field_count(), points);
 }
 
 void StrainHourglassStiffness::set_reference(const FieldArray& fields) {
@@ -206,13 +209,12 @@ void StrainHourglassStiffness::add_patch_stress(const PhysicsModel& model,
                                                 std::span<const std::int32_t> point_material,
                                                 const FieldArray& displacement,
                                                 FieldArray& point_values) {
-  // Eq. 3.12: r = G u - I A G u, each cell's strain less the mean of its corners' patch means;
-  // tau = beta D : r is the gradient of the patch variance energy as it stands, since the
-  // deviations from a patch's mean have zero weighted sum over the patch.
+  // Eq. 3.12: r = the residual of G u's patch fits (eq. 3.13); tau = beta D : r is the gradient
+  // of the patch energy as it stands, since a fit's residual is orthogonal to what it fits.
   apply_operator(to_points, displacement, displacement_parity_, nullptr, &gradient_);
   symmetric_part(gradient_, {0, 1, 2, 3});
-  average_to_nodes(strain_);
-  subtract_interpolated_node_strain(to_points);
+  patch_fit_.residual(strain_, point_strain_);
+  std::swap(strain_, point_strain_);
   elastic_stress_of_strain(model, point_material);
   add_to(point_values);
 }

@@ -26,8 +26,10 @@
 #include <vector>
 
 #include "rktsph/core/field_array.hpp"
+#include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/sph/adjoint_operator.hpp"
 #include "rktsph/sph/operators.hpp"
+#include "rktsph/stabilisation/patch_fit.hpp"
 
 namespace rktsph {
 
@@ -50,8 +52,8 @@ class StrainHourglassStiffness {
                            std::span<const double> point_volume,
                            std::span<const std::uint8_t> mirror_axes,
                            std::span<const std::pair<std::int32_t, int>> constrained,
-                           std::span<const std::int32_t> node_material, double epsilon,
-                           StrainControl form = StrainControl::Received);
+                           std::span<const std::int32_t> node_material, const NodeSets& nodes,
+                           double epsilon, StrainControl form = StrainControl::Received);
 
   bool active() const { return epsilon_ > 0.0; }
   /// The received form integrates e, the strain the nodal stress received (State::strain).
@@ -100,6 +102,7 @@ class StrainHourglassStiffness {
 
   double epsilon_ = 0.0;
   StrainControl form_ = StrainControl::Received;
+  PatchFit patch_fit_;  // the patch form's fits (eq. 3.13)
   AdjointOperator node_average_;       // A: b_Pn = V_P w_Pn / V_n over every node
   std::array<int, 3> stress_field_{};  // the model's xx, yy, xy fields
   std::vector<Parity> displacement_parity_;

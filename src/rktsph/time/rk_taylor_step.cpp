@@ -129,7 +129,7 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
   strain_hourglass_stiffness_ = StrainHourglassStiffness(
       model, operators_.nodes_to_points, configuration.stress_points.volume,
       conditions.mirror_axes(), conditions.constrained_stress(), reference.node_material,
-      options.strain_hourglass_stiffness, options.strain_control);
+      nodes_, options.strain_hourglass_stiffness, options.strain_control);
 }
 
 void RkTaylorStep::bind_operators(const Configuration& configuration) {
