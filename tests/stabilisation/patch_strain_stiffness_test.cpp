@@ -163,8 +163,7 @@ TEST(PatchStrainStiffnessSlow, KeepsTheStaticStateOfAKinkedLoadSmoothOnTriangles
 TEST(PatchStrainStiffnessSlow, StepOnTrianglesStaysStableUpToBetaOne) {
   for (double beta : {0.01, 0.1, 1.0}) {
     Simulation simulation(kinked_triangle_block(beta, 0.0).description());
-    const double r =
-        test::largest_eigenvalue_modulus(test::affine_step(simulation, 1.0).matrix);
+    const double r = test::largest_eigenvalue_modulus(test::affine_step(simulation, 1.0).matrix);
     EXPECT_LE(r, 1.0 + 1e-8) << "beta " << beta << fmt::format(" radius - 1 = {:.3e}", r - 1.0);
   }
 }
@@ -176,8 +175,7 @@ TEST(PatchStrainStiffness, IsRefusedTogetherWithTheStrainHourglassStiffness) {
     const Simulation simulation(block.description());
     ADD_FAILURE() << "strain_stiffness with the triangles' default patch stiffness was accepted";
   } catch (const InputError& error) {
-    EXPECT_NE(std::string(error.what()).find("patch_stiffness"), std::string::npos)
-        << error.what();
+    EXPECT_NE(std::string(error.what()).find("patch_stiffness"), std::string::npos) << error.what();
   }
   block.numerics = "{hourglass: {strain_stiffness: 0.1, patch_stiffness: 0}}";
   EXPECT_NO_THROW(Simulation{block.description()});

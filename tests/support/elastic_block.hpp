@@ -27,8 +27,8 @@ struct ElasticBlock {
 
   std::string text() const {
     std::string yaml = "name: block\ndimension: 2\nplane: " + plane +
-                       "\ngeometry:\n  cells: " + cells + "\n  spacing: " + std::to_string(spacing) +
-                       "\n  shapes: " + shapes +
+                       "\ngeometry:\n  cells: " + cells +
+                       "\n  spacing: " + std::to_string(spacing) + "\n  shapes: " + shapes +
                        "\nmaterials:\n  soil: {model: linear_elastic, density: 2000.0, "
                        "young_modulus: 1.0e7, poisson_ratio: 0.3}\n";
     if (!groups.empty()) yaml += "groups: " + groups + "\n";

@@ -202,7 +202,7 @@ inline constexpr double kDefaultHourglassStiffness = 1.0;
 inline constexpr double kDefaultViscoplasticHourglassStiffness = 0.05;
 /// beta of the patch strain stiffness (docs/theory.md eq. 3.12) on triangle meshes when the case
 /// does not set it; 0 on a lattice, whose quadrilaterals the cells' hourglass stiffness controls.
-inline constexpr double kDefaultTrianglePatchStiffness = 0.01;
+inline constexpr double kDefaultTrianglePatchStiffness = 0.03;
 
 struct NumericsSpec {
   KernelType kernel = KernelType::CubicSpline;

@@ -40,7 +40,10 @@ std::array<double, 9> pseudo_inverse(const Eigen::Matrix3d& normal) {
 
 PatchFit::PatchFit(const CellComplex& cells, const PointCloud& nodes, const PointCloud& points,
                    std::span<const std::uint8_t> mirror_axes, std::span<const Parity> parity)
-    : cells_(&cells), nodes_(&nodes), points_(&points), field_parity_(parity.begin(), parity.end()) {
+    : cells_(&cells),
+      nodes_(&nodes),
+      points_(&points),
+      field_parity_(parity.begin(), parity.end()) {
   for (Parity p : field_parity_)
     if (std::find(class_parity_.begin(), class_parity_.end(), p) == class_parity_.end())
       class_parity_.push_back(p);

@@ -32,8 +32,8 @@ StrainHourglassStiffness::StrainHourglassStiffness(
   model_gradient_ = FieldArray(model.field_count() * 2, points);
   rate_ = FieldArray(model.field_count(), points);
   if (form == StrainControl::Patch) {
-    patch_fit_ = PatchFit(nodes.cells, nodes.sph_nodes, nodes.stress_points, mirror_axes,
-                          strain_parity_);
+    patch_fit_ =
+        PatchFit(nodes.cells, nodes.sph_nodes, nodes.stress_points, mirror_axes, strain_parity_);
     return;
   }
   const std::size_t node_count = mirror_axes.size();

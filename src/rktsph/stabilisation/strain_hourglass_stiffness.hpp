@@ -17,6 +17,12 @@
 //   tau~ = tau - I P*(A tau),   tau = epsilon_s D : r                                     (3.6)
 // (A is the volume-weighted adjoint of I, P* the transpose of P's linear part: the second term is
 // the force through e's dependence on the motion, and the step stays stable up to eq. 3.7).
+//
+// The patch form (eqs. 3.12-3.13, the default on triangles) measures each cell's strain against
+// the first-order fits of its corners' patches of cells (PatchFit) instead: the soft modes of the
+// nodal strain average on triangles, whose strains the patch fits do not explain, get the stiffness
+// beta D, and fields linear in space none. A fit's residual is orthogonal to what it fits, so
+// tau = beta D : r is the gradient of that energy as it stands (no second term as in eq. 3.6).
 #pragma once
 
 #include <array>
@@ -102,7 +108,7 @@ class StrainHourglassStiffness {
 
   double epsilon_ = 0.0;
   StrainControl form_ = StrainControl::Received;
-  PatchFit patch_fit_;  // the patch form's fits (eq. 3.13)
+  PatchFit patch_fit_;                 // the patch form's fits (eq. 3.13)
   AdjointOperator node_average_;       // A: b_Pn = V_P w_Pn / V_n over every node
   std::array<int, 3> stress_field_{};  // the model's xx, yy, xy fields
   std::vector<Parity> displacement_parity_;

@@ -128,8 +128,8 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
   // On the first tables: it keeps the imposed stresses of t = 0 as its reference (eq. 3.8).
   strain_hourglass_stiffness_ = StrainHourglassStiffness(
       model, operators_.nodes_to_points, configuration.stress_points.volume,
-      conditions.mirror_axes(), conditions.constrained_stress(), reference.node_material,
-      nodes_, options.strain_hourglass_stiffness, options.strain_control);
+      conditions.mirror_axes(), conditions.constrained_stress(), reference.node_material, nodes_,
+      options.strain_hourglass_stiffness, options.strain_control);
 }
 
 void RkTaylorStep::bind_operators(const Configuration& configuration) {
