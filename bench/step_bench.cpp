@@ -122,6 +122,17 @@ void BM_BarWaveStep(benchmark::State& bench_state, const std::string& size) {
   step_benchmark(bench_state, [&]() -> Simulation& { return simulation_for(size); });
 }
 
+/// BAR-WAVE-2D on a triangle mesh (cases/triangles-bar-wave-2d, docs/theory.md §8.11): size S as
+/// the case gives it, L at the lattice's L spacing (edges at most 1.25 mm). The same step on
+/// cells of another shape: about 2.5 times the lattice's nodes at one dx, and per-row tables.
+void BM_TriangleBarWaveStep(benchmark::State& bench_state, const std::string& spacing) {
+  step_benchmark(bench_state, [&]() -> Simulation& {
+    std::vector<CaseOverride> overrides;
+    if (!spacing.empty()) overrides.push_back({"geometry.spacing", spacing});
+    return cached_simulation(bundled_case("triangles-bar-wave-2d"), overrides);
+  });
+}
+
 /// The same bar with the large-deformation model (docs/theory.md §9): the nodes move, and every
 /// step rebuilds its operators and turns its faces on the new configuration.
 void BM_MovingBarWaveStep(benchmark::State& bench_state, const std::string& size) {
@@ -152,6 +163,16 @@ BENCHMARK_CAPTURE(BM_BarWaveStep, l, std::string("l"))
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK_CAPTURE(BM_BarWaveStep, xl, std::string("xl"))
+    ->Iterations(50)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The timing protocol's step counts of S and L (200, 50).
+BENCHMARK_CAPTURE(BM_TriangleBarWaveStep, s, std::string())
+    ->Iterations(200)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_TriangleBarWaveStep, l, std::string("0.00125"))
     ->Iterations(50)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

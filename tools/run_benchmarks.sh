@@ -14,6 +14,8 @@
 # Settings (environment):
 #   RKTSPH_BENCH_THREADS      thread counts, default "1 2"
 #   RKTSPH_BENCH_SIZES        BAR-WAVE-2D sizes, default "s m l xl"
+#   RKTSPH_BENCH_TRIANGLE_SIZES  BAR-WAVE-2D sizes on a triangle mesh (cases/triangles-bar-wave-2d),
+#                             default "s l"; "" skips them
 #   RKTSPH_BENCH_REPETITIONS  repetitions per measurement, default 3
 #   RKTSPH_BENCH_XL_THREADS   thread counts for XL, default: the largest of RKTSPH_BENCH_THREADS
 #                             (XL at one thread alone would take about 80 s per repetition)
@@ -39,6 +41,7 @@ fi
 
 threads_list=${RKTSPH_BENCH_THREADS:-"1 2"}
 sizes=${RKTSPH_BENCH_SIZES:-"s m l xl"}
+triangle_sizes=${RKTSPH_BENCH_TRIANGLE_SIZES-"s l"}
 repetitions=${RKTSPH_BENCH_REPETITIONS:-3}
 largest_threads=$(tr ' ' '\n' <<<"$threads_list" | sort -n | tail -1)
 xl_threads=${RKTSPH_BENCH_XL_THREADS:-$largest_threads}
@@ -144,22 +147,27 @@ if [[ ${RKTSPH_BENCH_KERNELS:-1} != 0 ]]; then
 fi
 
 echo
-echo "== BAR-WAVE-2D step (advance() only; 200 / 100 / 50 / 50 steps per measurement at S / M / L / XL)"
+echo "== BAR-WAVE-2D step (advance() only; 200 / 100 / 50 / 50 steps per measurement at S / M / L / XL;"
+echo "   TRI-S, TRI-L: the bar on a triangle mesh of edges at most the S and L spacings)"
 step_records=$out_dir/steps.tsv
 : >"$step_records"
-for size in $sizes; do
+# Each size once per thread count, in a process of its own: the lattice's sizes, then the
+# triangle mesh's as tri-<size> (BM_TriangleBarWaveStep).
+for size in $sizes $(for s in $triangle_sizes; do echo "tri-$s"; done); do
   size_threads=$threads_list
   size_repetitions=$repetitions
   if [[ $size == xl ]]; then
     size_threads=$xl_threads
     size_repetitions=$xl_repetitions
   fi
+  filter="^BM_BarWaveStep/$size/"
+  [[ $size == tri-* ]] && filter="^BM_TriangleBarWaveStep/${size#tri-}/"
   for threads in $size_threads; do
     json=$out_dir/step-$size-t$threads.json
     log=$out_dir/step-$size-t$threads.log
     load=$(cut -d' ' -f1 /proc/loadavg)
     rss_kb=""
-    args=(--benchmark_filter="^BM_BarWaveStep/$size/" --benchmark_repetitions="$size_repetitions"
+    args=(--benchmark_filter="$filter" --benchmark_repetitions="$size_repetitions"
       --benchmark_report_aggregates_only=true --benchmark_out="$json" --benchmark_out_format=json)
     if [[ -n $time_program ]]; then
       timing=$out_dir/step-$size-t$threads.time
@@ -212,13 +220,13 @@ with open(records_path) as records:
         rows.append((size.upper(), nodes, threads, seconds_per_step, nodes / seconds_per_step, rss,
                      load, "median" if medians else "1 run"))
 
-header = f"{'size':>4}  {'nodes':>9}  {'threads':>7}  {'s/step':>10}  {'particle-steps/s':>16}"
+header = f"{'size':>5}  {'nodes':>9}  {'threads':>7}  {'s/step':>10}  {'particle-steps/s':>16}"
 if show_rss:
     header += f"  {'peak RSS MB':>11}  {'KB/node':>7}"
 header += f"  {'load(1 min)':>11}  of"
 print(header)
 for size, nodes, threads, seconds, rate, rss, load, basis in rows:
-    line = f"{size:>4}  {nodes:>9}  {threads:>7}  {seconds:>10.4g}  {rate:>16.3e}"
+    line = f"{size:>5}  {nodes:>9}  {threads:>7}  {seconds:>10.4g}  {rate:>16.3e}"
     if show_rss:
         per_node = f"{float(rss) * 1024 / nodes:.2f}" if rss != "-" else "-"
         line += f"  {rss:>11}  {per_node:>7}"

@@ -24,6 +24,8 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_bar_wave_2d},
       {"convergence", "spatial convergence order of the elastic bar and a smooth 2D wave",
        &validate_convergence},
+      {"triangles-bar-wave-2d", "BAR-WAVE-2D plane wave and its convergence on triangles (I28)",
+       &validate_triangles_bar_wave_2d},
       {"vpw-consolidation", "Terzaghi consolidation of a saturated column (6.4.2)",
        &validate_vpw_consolidation},
       {"vpw-harmonic-column", "saturated column under harmonic load, three permeabilities (6.4.3)",

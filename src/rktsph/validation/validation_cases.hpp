@@ -2,8 +2,10 @@
 // registry.cpp. Each runs its case file(s) under cases/<name>/ and returns its checks.
 #pragma once
 
+#include <string>
 #include <vector>
 
+#include "rktsph/case/case_reader.hpp"
 #include "rktsph/validation/validation_case.hpp"
 
 namespace rktsph {
@@ -19,6 +21,7 @@ std::vector<CheckResult> validate_triangles_vpw_consolidation(const ValidationCo
 std::vector<CheckResult> validate_slope_viscoplastic(const ValidationContext& context);
 std::vector<CheckResult> validate_slope_softening(const ValidationContext& context);
 std::vector<CheckResult> validate_bar_wave_2d(const ValidationContext& context);
+std::vector<CheckResult> validate_triangles_bar_wave_2d(const ValidationContext& context);
 std::vector<CheckResult> validate_convergence(const ValidationContext& context);
 std::vector<CheckResult> validate_vpw_consolidation(const ValidationContext& context);
 std::vector<CheckResult> validate_vpw_harmonic_column(const ValidationContext& context);
@@ -38,5 +41,19 @@ std::vector<CheckResult> validate_ld_strip_footing_bearing(const ValidationConte
 std::vector<CheckResult> validate_ld_cantilever_plate(const ValidationContext& context);
 std::vector<CheckResult> validate_ld_slope_cohesive(const ValidationContext& context);
 std::vector<CheckResult> validate_ld_slope_low_cohesion(const ValidationContext& context);
+
+/// The smooth plane wave of `convergence` (cases/convergence-wave2d, refined over `cells` along x
+/// with `overrides` applied, e.g. a triangle mesh): the relative L2 errors of sigma_xx, the
+/// spacings and the least-squares order (validation/cases/convergence.cpp).
+struct PlaneWaveConvergence {
+  std::vector<int> cells;
+  std::vector<double> spacing, error;
+  double order = 0.0;
+};
+PlaneWaveConvergence plane_wave_convergence(const ValidationContext& context,
+                                            const std::vector<int>& cells,
+                                            const std::vector<CaseOverride>& overrides);
+/// The order check of `convergence`: expected 2, passes at 1.8 or more.
+CheckResult convergence_order_check(const std::string& name, double order);
 
 }  // namespace rktsph

@@ -103,16 +103,17 @@ struct LevelProfile {
   std::vector<double> exact_x, exact;  // the exact solution, finely sampled
 };
 
-/// Runs `folder` at each cell count along x and returns the L2 errors; a 2D strip is kept 4 cells
-/// high. With `profiles`, also records each level's stress profile.
+/// Runs `folder` (with `overrides`) at each cell count along x and returns the L2 errors; a 2D
+/// strip is kept 4 cells high. With `profiles`, also records each level's stress profile.
 std::vector<double> refinement_errors(const ValidationContext& context, const std::string& folder,
                                       const std::vector<int>& cells, std::vector<double>& spacing,
-                                      std::vector<LevelProfile>* profiles = nullptr) {
+                                      std::vector<LevelProfile>* profiles = nullptr,
+                                      const std::vector<CaseOverride>& overrides = {}) {
   std::vector<double> errors;
   spacing.clear();
   if (profiles) profiles->clear();
   for (int count : cells) {
-    CaseDescription description = load_bundled_case(context, folder);
+    CaseDescription description = load_bundled_case(context, folder, overrides);
     ShapeSpec& shape = description.geometry.shapes.at(0);
     const double length = shape.vertices.at(1)[0] - shape.vertices.at(0)[0];
     const double dx = length / count;
@@ -230,6 +231,21 @@ void report_convergence(ValidationReport& report, const std::vector<int>& cells,
 }
 
 }  // namespace
+
+PlaneWaveConvergence plane_wave_convergence(const ValidationContext& context,
+                                            const std::vector<int>& cells,
+                                            const std::vector<CaseOverride>& overrides) {
+  PlaneWaveConvergence result;
+  result.cells = cells;
+  result.error =
+      refinement_errors(context, "convergence-wave2d", cells, result.spacing, nullptr, overrides);
+  result.order = convergence_order(result.spacing, result.error);
+  return result;
+}
+
+CheckResult convergence_order_check(const std::string& name, double order) {
+  return order_check(name, order);
+}
 
 std::vector<CheckResult> validate_convergence(const ValidationContext& context) {
   // The pulse is c T = 0.6 L long, its core about half of that: 40 cells put ~12 cells in the
