@@ -5,7 +5,8 @@
 // - on a damped triangle block under a load with a kink, the static state exists and its surface
 //   settlement has a smaller node-to-node part with the control than without;
 // - the step on triangles stays stable (spectral radius <= 1 + 1e-8) up to beta = 1;
-// - the case refuses it together with the strain hourglass stiffness.
+// - the case refuses it together with the strain hourglass stiffness;
+// - its stress at each stress point follows that point's factor (eq. 3.14).
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
@@ -179,6 +180,44 @@ TEST(PatchStrainStiffness, IsRefusedTogetherWithTheStrainHourglassStiffness) {
   }
   block.numerics = "{hourglass: {strain_stiffness: 0.1, patch_stiffness: 0}}";
   EXPECT_NO_THROW(Simulation{block.description()});
+}
+
+// Eq. 3.14: the patch form's stress at each stress point is scaled by its factor, so that a cell
+// at factor 0 (flowing, psi = 0) gets none and one at factor 1 exactly what it got before.
+TEST(PatchStrainStiffness, ScalesEachStressPointsStressByItsFactor) {
+  Simulation simulation(triangle_block(1.0).description());
+  const RkTaylorStep& step = simulation.step();
+  const StrainHourglassStiffness& control = step.strain_hourglass_stiffness();
+  ASSERT_TRUE(control.active());
+  const PhysicsModel& model = simulation.model();
+  const NodeSets& nodes = simulation.nodes();
+  const std::size_t n = nodes.sph_nodes.size(), points = nodes.stress_points.size();
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> uniform(-1e-3, 1e-3);
+  FieldArray displacement(2, n);
+  for (double& u : displacement.data())
+    u = uniform(random);
+  const FieldArray& fields = simulation.state().fields;
+  const auto stress_of = [&](std::span<const double> factor) {
+    StrainHourglassStiffness copy = control;  // its scratch is mutable state
+    FieldArray values(model.field_count(), points + n);
+    copy.add_stress(model, step.operators().nodes_to_points, nodes.cells.materials(), displacement,
+                    simulation.state().strain, FieldArray(4, points), 1e-3, fields, factor, values);
+    return values;
+  };
+  std::vector<double> factor(points);
+  for (std::size_t p = 0; p < points; ++p)
+    factor[p] = static_cast<double>(p % 3) * 0.5;  // 0, 0.5, 1
+  const FieldArray full = stress_of({}), scaled = stress_of(factor);
+  double largest = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const int f = model.stress_field(k == 2 ? 0 : k, k == 2 ? 1 : k);
+    for (std::size_t p = 0; p < points; ++p) {
+      largest = std::max(largest, std::abs(full(f, p)));
+      EXPECT_EQ(scaled(f, p), factor[p] * full(f, p)) << "point " << p << " component " << k;
+    }
+  }
+  EXPECT_GT(largest, 0.0) << "the random displacement gave no patch stress to scale";
 }
 
 }  // namespace
