@@ -5,7 +5,9 @@
 // - on a damped triangle block under a load with a kink, the static state exists and its surface
 //   settlement has a smaller node-to-node part with the control than without;
 // - the step on triangles stays stable (spectral radius <= 1 + 1e-8) up to beta = 1;
-// - the case refuses it together with the strain hourglass stiffness.
+// - the case refuses it together with the strain hourglass stiffness;
+// - its stress at each stress point follows that point's factor, and the factors follow the flow
+//   around a triangle as eq. 3.10's do around a lattice cell (eq. 3.14).
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
@@ -22,6 +24,7 @@
 #include "rktsph/boundary/boundary_conditions.hpp"
 #include "rktsph/core/error.hpp"
 #include "rktsph/simulation/simulation.hpp"
+#include "rktsph/stabilisation/flow_strength.hpp"
 #include "rktsph/stabilisation/patch_fit.hpp"
 #include "rktsph/validation/rest_checks.hpp"
 
@@ -179,6 +182,129 @@ TEST(PatchStrainStiffness, IsRefusedTogetherWithTheStrainHourglassStiffness) {
   }
   block.numerics = "{hourglass: {strain_stiffness: 0.1, patch_stiffness: 0}}";
   EXPECT_NO_THROW(Simulation{block.description()});
+}
+
+// Eq. 3.14: the patch form's stress at each stress point is scaled by its factor, so that a cell
+// at factor 0 (flowing, psi = 0) gets none and one at factor 1 exactly what it got before.
+TEST(PatchStrainStiffness, ScalesEachStressPointsStressByItsFactor) {
+  Simulation simulation(triangle_block(1.0).description());
+  const RkTaylorStep& step = simulation.step();
+  const StrainHourglassStiffness& control = step.strain_hourglass_stiffness();
+  ASSERT_TRUE(control.active());
+  const PhysicsModel& model = simulation.model();
+  const NodeSets& nodes = simulation.nodes();
+  const std::size_t n = nodes.sph_nodes.size(), points = nodes.stress_points.size();
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> uniform(-1e-3, 1e-3);
+  FieldArray displacement(2, n);
+  for (double& u : displacement.data())
+    u = uniform(random);
+  const FieldArray& fields = simulation.state().fields;
+  const auto stress_of = [&](std::span<const double> factor) {
+    StrainHourglassStiffness copy = control;  // its scratch is mutable state
+    FieldArray values(model.field_count(), points + n);
+    copy.add_stress(model, step.operators().nodes_to_points, nodes.cells.materials(), displacement,
+                    simulation.state().strain, FieldArray(4, points), 1e-3, fields, factor, values);
+    return values;
+  };
+  std::vector<double> factor(points);
+  for (std::size_t p = 0; p < points; ++p)
+    factor[p] = static_cast<double>(p % 3) * 0.5;  // 0, 0.5, 1
+  const FieldArray full = stress_of({}), scaled = stress_of(factor);
+  double largest = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const int f = model.stress_field(k == 2 ? 0 : k, k == 2 ? 1 : k);
+    for (std::size_t p = 0; p < points; ++p) {
+      largest = std::max(largest, std::abs(full(f, p)));
+      EXPECT_EQ(scaled(f, p), factor[p] * full(f, p)) << "point " << p << " component " << k;
+    }
+  }
+  EXPECT_GT(largest, 0.0) << "the random displacement gave no patch stress to scale";
+}
+
+// Eq. 3.14 takes eq. 3.10's rule on triangles: psi r in a flowing cell, r in the cells within
+// kFlowNeighbourhood rings of it (cells sharing a node, by a breadth-first walk here), 1 elsewhere;
+// a cell that has flowed counts as flow for its neighbours but keeps r itself.
+TEST(PatchStrainStiffness, StrengthFollowsTheFlowAroundATriangle) {
+  const Simulation simulation(triangle_block(0.8).description());
+  const CellComplex& cells = simulation.nodes().cells;
+  const std::size_t count = cells.cell_count();
+  const std::size_t centre = count / 2;
+  // Ring of every cell around `centre` by a breadth-first walk over node-sharing cells.
+  std::vector<int> ring(count, -1);
+  ring[centre] = 0;
+  std::vector<std::size_t> frontier{centre};
+  for (int step = 1; step <= kFlowNeighbourhood; ++step) {
+    std::vector<std::size_t> next;
+    for (const std::size_t cell : frontier)
+      for (const std::int32_t node : cells.corners(cell))
+        for (const std::int32_t other : cells.cells_of(static_cast<std::size_t>(node)))
+          if (ring[static_cast<std::size_t>(other)] < 0) {
+            ring[static_cast<std::size_t>(other)] = step;
+            next.push_back(static_cast<std::size_t>(other));
+          }
+    frontier = std::move(next);
+  }
+  ASSERT_GT(std::count(ring.begin(), ring.end(), kFlowNeighbourhood), 0);
+  ASSERT_GT(std::count(ring.begin(), ring.end(), -1), 0) << "the mesh is too small for the test";
+  const double ratio = 0.05, psi = 0.3;
+  const std::vector<double> near_flow(count, ratio);
+  std::vector<std::uint8_t> near_node(cells.node_count(), 0);
+  std::vector<double> factor(count, -1.0);
+  for (const std::uint8_t state : {std::uint8_t{1}, std::uint8_t{2}}) {  // flows, has flowed
+    std::vector<std::uint8_t> flowing(count, 0);
+    flowing[centre] = state;
+    flow_strength_factors(cells, near_flow, flowing, psi, near_node, factor);
+    for (std::size_t p = 0; p < count; ++p) {
+      const double expected = p == centre && state == 1 ? psi * ratio : ring[p] >= 0 ? ratio : 1.0;
+      EXPECT_DOUBLE_EQ(factor[p], expected) << "cell " << p << " ring " << ring[p];
+    }
+  }
+}
+
+// The block of triangle_block in a Perzyna Von Mises soil held on every side, under a shear stress
+// 100 times its yield stress and a little gravity: every stress point flows from the first step
+// on, for the whole short run (the fluidity is low enough that the overstress barely relaxes).
+Simulation flowing_triangle_block(double beta, double plastic_fraction) {
+  test::ElasticBlock block = triangle_block(0.8);
+  block.conditions = {"{group: xmin, fixed: true}", "{group: xmax, fixed: true}",
+                      "{group: ymin, fixed: true}", "{group: ymax, fixed: true}"};
+  block.loads = "{gravity: {acceleration: [0, -0.1]}}";
+  block.numerics = fmt::format("{{hourglass: {{patch_stiffness: {}, plastic_fraction: {}}}}}", beta,
+                               plastic_fraction);
+  std::string text = block.text();
+  const std::string elastic = "model: linear_elastic,";
+  text.replace(text.find(elastic), elastic.size(),
+               "model: perzyna_von_mises, yield_stress: 100.0, hardening_modulus: 0.0, "
+               "fluidity: 1.0e-6, exponent: 1.0,");
+  text += "initial_conditions: {stress: {xy: 10000.0}}\n";
+  return Simulation(read_case_text(text, "block.yaml"));
+}
+
+std::vector<double> displacement_after(Simulation simulation, int steps) {
+  State& state = simulation.state();
+  for (int step = 0; step < steps; ++step)
+    simulation.step().advance(state, simulation.time_step());
+  return state.displacement.data();
+}
+
+// Eq. 3.14 in the step: with psi = 0 a flowing cell gets none of the patch stress, so a body that
+// flows everywhere moves as without the control, bit for bit; with psi = 1 it keeps r beta D and
+// moves otherwise (which shows that the control had something to act on).
+TEST(PatchStrainStiffness, LeavesABodyThatFlowsEverywhereAsWithoutIt) {
+  const int steps = 40;
+  const std::vector<double> without = displacement_after(flowing_triangle_block(0.0, 0.0), steps);
+  const std::vector<double> with = displacement_after(flowing_triangle_block(0.03, 0.0), steps);
+  const std::vector<double> stiff = displacement_after(flowing_triangle_block(0.03, 1.0), steps);
+  ASSERT_EQ(with.size(), without.size());
+  double largest = 0.0, moved = 0.0;
+  for (std::size_t i = 0; i < with.size(); ++i) {
+    EXPECT_EQ(with[i], without[i]) << "entry " << i;
+    largest = std::max(largest, std::abs(without[i]));
+    moved = std::max(moved, std::abs(stiff[i] - without[i]));
+  }
+  EXPECT_GT(largest, 0.0);
+  EXPECT_GT(moved, 1e-9 * largest) << "the patch stress at psi = 1 changed nothing";
 }
 
 }  // namespace

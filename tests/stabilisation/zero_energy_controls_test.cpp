@@ -97,7 +97,8 @@ TEST(HourglassStiffness, StrengthFollowsTheFlowAroundTheCell) {
   for (const std::uint8_t state : {std::uint8_t{1}, std::uint8_t{2}}) {  // flows, has flowed
     std::vector<std::uint8_t> flowing(cells, 0);
     flowing[centre] = state;
-    hourglass_factors(control, flowing, psi, near_node, factor);
+    flow_strength_factors(simulation.nodes().cells, control.near_flow, flowing, psi, near_node,
+                          factor);
     for (std::size_t p = 0; p < cells; ++p) {
       const auto corner = lower_left(p);
       const bool near = std::abs(corner[0] - 6.0) <= kFlowNeighbourhood &&
@@ -107,7 +108,8 @@ TEST(HourglassStiffness, StrengthFollowsTheFlowAroundTheCell) {
     }
   }
   // No flow: every cell at full strength.
-  hourglass_factors(control, std::vector<std::uint8_t>(cells, 0), psi, near_node, factor);
+  flow_strength_factors(simulation.nodes().cells, control.near_flow,
+                        std::vector<std::uint8_t>(cells, 0), psi, near_node, factor);
   for (double value : factor)
     EXPECT_EQ(value, 1.0);
 }

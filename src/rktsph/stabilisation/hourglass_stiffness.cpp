@@ -104,48 +104,6 @@ HourglassStiffness build_hourglass_stiffness(const NodeSets& nodes, const Physic
   return control;
 }
 
-void hourglass_factors(const HourglassStiffness& control, std::span<const std::uint8_t> flowing,
-                       double plastic_fraction, std::span<std::uint8_t> near_node,
-                       std::span<double> factor) {
-  const auto nodes = static_cast<std::int64_t>(control.inverse_mass.size());
-  const auto cells = static_cast<std::int64_t>(control.corners.size());
-  // near_node[n] = 1 where a cell of node n is marked (a gather over the node's cells).
-  const auto mark_nodes = [&](const auto& marked) {
-#pragma omp parallel for schedule(static) if (nodes > kParallelThreshold)
-    for (std::int64_t n = 0; n < nodes; ++n) {
-      const auto node = static_cast<std::size_t>(n);
-      std::uint8_t near = 0;
-      for (auto k = static_cast<std::size_t>(control.node_start[node]);
-           k < static_cast<std::size_t>(control.node_start[node + 1]); ++k)
-        near |= marked(static_cast<std::size_t>(control.cell_of[k])) ? 1 : 0;
-      near_node[node] = near;
-    }
-  };
-  const auto touches_marked_node = [&](std::size_t cell) {
-    bool near = false;
-    for (const std::int32_t node : control.corners[cell])
-      near = near || near_node[static_cast<std::size_t>(node)] != 0;
-    return near;
-  };
-  // The cells that flow or have flowed, then kFlowNeighbourhood rings of cells around them
-  // (factor holds the marks of the rings in between).
-  mark_nodes([&](std::size_t cell) { return flowing[cell] != 0; });
-  for (int ring = 1; ring < kFlowNeighbourhood; ++ring) {
-#pragma omp parallel for schedule(static) if (cells > kParallelThreshold)
-    for (std::int64_t p = 0; p < cells; ++p)
-      factor[static_cast<std::size_t>(p)] =
-          touches_marked_node(static_cast<std::size_t>(p)) ? 1.0 : 0.0;
-    mark_nodes([&](std::size_t cell) { return factor[cell] != 0.0; });
-  }
-#pragma omp parallel for schedule(static) if (cells > kParallelThreshold)
-  for (std::int64_t p = 0; p < cells; ++p) {
-    const auto cell = static_cast<std::size_t>(p);
-    factor[cell] = flowing[cell] == 1          ? plastic_fraction * control.near_flow[cell]
-                   : touches_marked_node(cell) ? control.near_flow[cell]
-                                               : 1.0;
-  }
-}
-
 void advance_hourglass_force(const HourglassStiffness& control, const FieldArray& fields,
                              const std::array<int, 2>& velocity_field, double interval,
                              std::span<const double> factor, const FieldArray& force_in,

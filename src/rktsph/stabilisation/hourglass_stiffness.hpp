@@ -20,6 +20,7 @@
 
 #include "rktsph/core/field_array.hpp"
 #include "rktsph/geometry/node_sets.hpp"
+#include "rktsph/stabilisation/flow_strength.hpp"
 
 namespace rktsph {
 
@@ -46,7 +47,7 @@ struct HourglassStiffness {
 
 /// The fraction epsilon of the fully integrated element's hourglass stiffness (docs/theory.md
 /// §3.4, eq. 3.10): `elastic` in every cell away from viscoplastic flow, `viscoplastic` in cells of
-/// viscoplastic materials around flow, present or past (hourglass_factors); both 0 = off.
+/// viscoplastic materials around flow, present or past (flow_strength_factors); both 0 = off.
 struct HourglassStrength {
   double elastic = 0.0;
   double viscoplastic = 0.0;
@@ -57,22 +58,9 @@ struct HourglassStrength {
 HourglassStiffness build_hourglass_stiffness(const NodeSets& nodes, const PhysicsModel& model,
                                              HourglassStrength epsilon);
 
-/// Rings of cells around a cell that flows or has flowed that take the near-flow strength (eq.
-/// 3.10; measured in docs/theory.md §3.4: with none, the cells around a forming mechanism hold it
-/// and Taylor's stability number rises).
-inline constexpr int kFlowNeighbourhood = 2;
-
-/// factor_P of eq. 3.9 for every cell from its flow state (flowing: 1 in flow, 2 flowed before,
-/// 0 never), docs/theory.md eq. 3.10: plastic_fraction * near_flow_P in flowing cells, near_flow_P
-/// in the other cells within kFlowNeighbourhood rings of a cell that flows or has flowed (itself
-/// included), 1 elsewhere. near_node is scratch of one entry per node; nothing is allocated.
-void hourglass_factors(const HourglassStiffness& control, std::span<const std::uint8_t> flowing,
-                       double plastic_fraction, std::span<std::uint8_t> near_node,
-                       std::span<double> factor);
-
 /// force_out = force_in + interval * factor_P k_P gamma_P . v for every cell P: the generalised
 /// hourglass force k q advanced by the velocity `fields` (components velocity_field[a]) over
-/// `interval` (eq. 3.9), with factor from hourglass_factors (eq. 3.10).
+/// `interval` (eq. 3.9), with factor from flow_strength_factors (eq. 3.10).
 void advance_hourglass_force(const HourglassStiffness& control, const FieldArray& fields,
                              const std::array<int, 2>& velocity_field, double interval,
                              std::span<const double> factor, const FieldArray& force_in,

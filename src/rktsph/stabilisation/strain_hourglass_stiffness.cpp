@@ -179,10 +179,11 @@ void StrainHourglassStiffness::add_stress(const PhysicsModel& model, const Weigh
                                           std::span<const std::int32_t> point_material,
                                           const FieldArray& displacement, const FieldArray& strain,
                                           const FieldArray& point_gradient, double dt,
-                                          const FieldArray& fields, FieldArray& point_values) {
+                                          const FieldArray& fields, std::span<const double> factor,
+                                          FieldArray& point_values) {
   if (!active()) return;
   if (form_ == StrainControl::Patch) {
-    add_patch_stress(model, to_points, point_material, displacement, point_values);
+    add_patch_stress(model, to_points, point_material, displacement, factor, point_values);
     return;
   }
   const int vx = model.velocity_field(0), vy = model.velocity_field(1);
@@ -208,6 +209,7 @@ void StrainHourglassStiffness::add_patch_stress(const PhysicsModel& model,
                                                 const WeightTable& to_points,
                                                 std::span<const std::int32_t> point_material,
                                                 const FieldArray& displacement,
+                                                std::span<const double> factor,
                                                 FieldArray& point_values) {
   // Eq. 3.12: r = the residual of G u's patch fits (eq. 3.13); tau = beta D : r is the gradient
   // of the patch energy as it stands, since a fit's residual is orthogonal to what it fits.
@@ -216,6 +218,11 @@ void StrainHourglassStiffness::add_patch_stress(const PhysicsModel& model,
   patch_fit_.residual(strain_, point_strain_);
   std::swap(strain_, point_strain_);
   elastic_stress_of_strain(model, point_material);
+  // Eq. 3.14: each cell's share follows the flow around it, so that the control does not hold a
+  // mechanism (a factor per stress point on tau, as eq. 3.9 scales the lattice's cells).
+  for (std::size_t p = 0; p < factor.size(); ++p)
+    for (int k = 0; k < 3; ++k)
+      strain_(k, p) *= factor[p];
   add_to(point_values);
 }
 

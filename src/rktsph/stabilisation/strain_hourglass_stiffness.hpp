@@ -46,6 +46,10 @@ class PhysicsModel;
 /// corners' patches (eq. 3.12, the soft modes of the nodal strain average on triangles).
 enum class StrainControl { Received, Patch };
 
+/// r_P of eq. 3.14: the fraction of beta that the patch form keeps in cells of viscoplastic
+/// materials around flow, present or past (docs/theory.md §3.4; psi times it where a cell flows).
+inline constexpr double kPatchNearFlowFraction = 0.05;
+
 class StrainHourglassStiffness {
  public:
   StrainHourglassStiffness() = default;
@@ -69,13 +73,15 @@ class StrainHourglassStiffness {
   /// measures the imposed stress increments.
   void set_reference(const FieldArray& fields);
 
-  /// Adds tau~ of eq. 3.6 to the in-plane stress fields of `point_values` (the stress points'
-  /// half-step values). `displacement` is u^{n+1/2} on the nodes (one field per axis), `fields`
-  /// the nodal state (its imposed stresses enter eq. 3.8).
+  /// Adds tau~ of eq. 3.6 (the patch form: tau of eq. 3.12 times factor_P, eq. 3.14) to the
+  /// in-plane stress fields of `point_values` (the stress points' half-step values).
+  /// `displacement` is u^{n+1/2} on the nodes (one field per axis), `fields` the nodal state (its
+  /// imposed stresses enter eq. 3.8); `factor` is one per stress point, or empty for 1 everywhere.
   void add_stress(const PhysicsModel& model, const WeightTable& to_points,
                   std::span<const std::int32_t> point_material, const FieldArray& displacement,
                   const FieldArray& strain, const FieldArray& point_gradient, double dt,
-                  const FieldArray& fields, FieldArray& point_values);
+                  const FieldArray& fields, std::span<const double> factor,
+                  FieldArray& point_values);
 
   /// e += dt sym(grad v) with the nodal velocity gradient the nodal stress is updated with (the
   /// velocity slots of the model's step-2 gradient `node_gradient`); e has fields xx, yy, xy.
@@ -104,7 +110,8 @@ class StrainHourglassStiffness {
   void add_to(FieldArray& point_values) const;
   void add_patch_stress(const PhysicsModel& model, const WeightTable& to_points,
                         std::span<const std::int32_t> point_material,
-                        const FieldArray& displacement, FieldArray& point_values);
+                        const FieldArray& displacement, std::span<const double> factor,
+                        FieldArray& point_values);
 
   double epsilon_ = 0.0;
   StrainControl form_ = StrainControl::Received;

@@ -98,8 +98,6 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
   if (hourglass_stiffness_.active()) {
     hourglass_force_ = FieldArray(2, nv);
     hourglass_factor_.assign(nv, 1.0);
-    point_flowing_.assign(nv, 0);
-    node_near_flow_.assign(hourglass_stiffness_.inverse_mass.size(), 0);
   }
   for (int a = 0; a < d; ++a)
     velocity_parities_.push_back(
@@ -130,6 +128,20 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
       model, operators_.nodes_to_points, configuration.stress_points.volume,
       conditions.mirror_axes(), conditions.constrained_stress(), reference.node_material, nodes_,
       options.strain_hourglass_stiffness, options.strain_control);
+  // The patch strain stiffness follows viscoplastic flow as the lattice's control does (eq.
+  // 3.14); with elastic materials only its factors would all be 1, so none are kept.
+  if (strain_hourglass_stiffness_.active() && options.strain_control == StrainControl::Patch) {
+    patch_near_flow_ = near_flow_ratios(nodes_.cells, model, kPatchNearFlowFraction);
+    if (std::any_of(patch_near_flow_.begin(), patch_near_flow_.end(),
+                    [](double ratio) { return ratio != 1.0; }))
+      patch_factor_.assign(nv, 1.0);
+    else
+      patch_near_flow_.clear();
+  }
+  if (hourglass_stiffness_.active() || !patch_factor_.empty()) {
+    point_flowing_.assign(nv, 0);
+    node_near_flow_.assign(ns, 0);
+  }
 }
 
 void RkTaylorStep::bind_operators(const Configuration& configuration) {
@@ -302,32 +314,30 @@ void RkTaylorStep::step_stress_points(const State& state, double dt) {
                                       nodes_.stress_points.volume.data(), nullptr);
   model_.advance(nodes_.cells.materials(), rate_, state.time, 0.5 * dt, half_step_,
                  point_internal_);
-  if (hourglass_stiffness_.active()) {
-    // The strength of each cell follows the flow, present or past, around it (docs/theory.md
-    // eq. 3.10): a cell flows where its stress point does at the half step, and has flowed where
-    // every corner node has (not one only: a drained loaded surface yields in its nodes alone).
-    // On a moving configuration every cell counts as having flowed, the rule before eq. 3.10:
-    // there the full strength held the cut of ld-slope-cohesive (N = 4.34 against 3.79, §3.4).
-    model_.flowing(nodes_.cells.materials(), half_step_, point_internal_, point_flowing_);
-    const bool moving = configuration_->motion() != nullptr;
-    if (!moving)
-      model_.flowing(nodes_.node_material, state.fields, state.internal, node_near_flow_);
-    const auto& corners = hourglass_stiffness_.corners;
-    for (std::size_t p = 0; p < point_flowing_.size(); ++p)
-      if (point_flowing_[p] != 1)
-        point_flowing_[p] =
-            moving || std::all_of(corners[p].begin(), corners[p].end(),
-                                  [this](std::int32_t node) {
-                                    return node_near_flow_[static_cast<std::size_t>(node)] != 0;
-                                  })
-                ? 2
-                : 0;
-    hourglass_factors(hourglass_stiffness_, point_flowing_, options_.hourglass_plastic_fraction,
-                      node_near_flow_, hourglass_factor_);
-  }
+  if (!point_flowing_.empty()) update_flow_strengths(state);
   if (viscosity_length_ > 0.0)
     model_.add_artificial_viscosity(nodes_.cells.materials(), point_gradient_, viscosity_length_,
                                     half_step_);
+}
+
+void RkTaylorStep::update_flow_strengths(const State& state) {
+  // The strength of each cell follows the flow, present or past, around it (docs/theory.md
+  // eqs. 3.10, 3.14): a cell flows where its stress point does at the half step, and has flowed
+  // where every corner node has (not one only: a drained loaded surface yields in its nodes alone).
+  // On a moving configuration every cell counts as having flowed, the rule before eq. 3.10:
+  // there the full strength held the cut of ld-slope-cohesive (N = 4.34 against 3.79, §3.4).
+  model_.flowing(nodes_.cells.materials(), half_step_, point_internal_, point_flowing_);
+  const bool moving = configuration_->motion() != nullptr;
+  if (!moving) model_.flowing(nodes_.node_material, state.fields, state.internal, node_near_flow_);
+  cell_flow_states(nodes_.cells, node_near_flow_, moving, point_flowing_);
+  // node_near_flow_ is the factors' scratch from here on.
+  const double psi = options_.hourglass_plastic_fraction;
+  if (hourglass_stiffness_.active())
+    flow_strength_factors(nodes_.cells, hourglass_stiffness_.near_flow, point_flowing_, psi,
+                          node_near_flow_, hourglass_factor_);
+  if (!patch_factor_.empty())
+    flow_strength_factors(nodes_.cells, patch_near_flow_, point_flowing_, psi, node_near_flow_,
+                          patch_factor_);
 }
 
 void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
@@ -376,7 +386,7 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   if (strain_hourglass_stiffness_.active())
     strain_hourglass_stiffness_.add_stress(
         model_, operators_.nodes_to_points, nodes_.cells.materials(), state.displacement,
-        state.strain, point_gradient_, dt, state.fields, half_step_);
+        state.strain, point_gradient_, dt, state.fields, patch_factor_, half_step_);
   // Step 2: gradient of the half-step values at the SPH nodes, full step from Phi^n.
   apply_operator(operators_.points_to_nodes, half_step_, model_.parities(), nullptr,
                  &node_gradient_);

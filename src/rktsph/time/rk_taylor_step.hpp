@@ -106,6 +106,8 @@ class RkTaylorStep {
   /// u += dt/2 v, one half of the trapezoidal displacement update.
   void add_half_step_displacement(State& state, double dt) const;
   void step_stress_points(const State& state, double dt);
+  // The cells' flow states and the controls' strengths from them (eqs. 3.10, 3.14).
+  void update_flow_strengths(const State& state);
   void step_boundary_nodes(const State& state, double dt);
   void step_nodes(State& state, double dt);
   void project_free_faces(const FieldArray& start, FieldArray& values, bool boundary_rows) const;
@@ -167,6 +169,8 @@ class RkTaylorStep {
   std::vector<double> hourglass_factor_;      // of eq. 3.9, from the cells' flow (eq. 3.10)
   std::vector<std::uint8_t> point_flowing_;   // cells: 1 flows, 2 has flowed, 0 never (3.10)
   std::vector<std::uint8_t> node_near_flow_;  // nodes: flowed, then scratch of the factors
+  std::vector<double> patch_near_flow_;       // r_P of the patch stiffness (eq. 3.14)
+  std::vector<double> patch_factor_;  // of the patch stiffness, empty unless it follows flow (3.14)
   std::vector<double> filter_values_;  // node-major copies for the round trip, then its residual
   std::vector<double> filter_points_;
   std::vector<double> filter_round_trip_;

@@ -42,6 +42,8 @@ const std::vector<ValidationCase>& validation_cases() {
        &validate_vpw_water_table},
       {"strip-footing-elastic", "flexible strip load on a dry elastic stratum against Flamant",
        &validate_strip_footing_elastic},
+      {"triangles-slope-viscoplastic", "vertical-cut stability number on triangles (4.5.2, I28)",
+       &validate_triangles_slope_viscoplastic},
       {"triangles-slope-elastic", "2:1 elastic slope on a triangle mesh, ramped gravity (I28)",
        &validate_triangles_slope_elastic},
       {"triangles-strip-footing-elastic", "the Flamant strip on a triangle mesh (I28)",

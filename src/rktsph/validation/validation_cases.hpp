@@ -16,6 +16,7 @@ std::vector<CheckResult> validate_sample2d_localization(const ValidationContext&
 std::vector<CheckResult> validate_mcc_triaxial(const ValidationContext& context);
 std::vector<CheckResult> validate_slope_elastic(const ValidationContext& context);
 std::vector<CheckResult> validate_triangles_slope_elastic(const ValidationContext& context);
+std::vector<CheckResult> validate_triangles_slope_viscoplastic(const ValidationContext& context);
 std::vector<CheckResult> validate_triangles_strip_footing_elastic(const ValidationContext& context);
 std::vector<CheckResult> validate_triangles_vpw_consolidation(const ValidationContext& context);
 std::vector<CheckResult> validate_slope_viscoplastic(const ValidationContext& context);
