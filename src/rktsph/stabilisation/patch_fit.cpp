@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "rktsph/core/parallel.hpp"
 
@@ -44,9 +45,13 @@ PatchFit::PatchFit(const CellComplex& cells, const PointCloud& nodes, const Poin
       nodes_(&nodes),
       points_(&points),
       field_parity_(parity.begin(), parity.end()) {
-  for (Parity p : field_parity_)
-    if (std::find(class_parity_.begin(), class_parity_.end(), p) == class_parity_.end())
-      class_parity_.push_back(p);
+  if (field_parity_.size() > kMaxFields)
+    throw std::invalid_argument("PatchFit: at most kMaxFields fields");
+  for (Parity p : field_parity_) {
+    auto known = std::find(class_parity_.begin(), class_parity_.end(), p);
+    if (known == class_parity_.end()) known = class_parity_.insert(class_parity_.end(), p);
+    field_class_.push_back(static_cast<std::size_t>(known - class_parity_.begin()));
+  }
   const std::size_t node_count = nodes.size();
   inverse_normal_.resize(node_count * class_parity_.size());
   for (std::size_t n = 0; n < node_count; ++n)
@@ -66,7 +71,7 @@ PatchFit::PatchFit(const CellComplex& cells, const PointCloud& nodes, const Poin
       }
       inverse_normal_[n * class_parity_.size() + k] = pseudo_inverse(normal);
     }
-  coefficient_ = FieldArray(static_cast<int>(3 * field_parity_.size()), node_count);
+  coefficient_.resize(node_count);
 }
 
 std::array<double, 3> PatchFit::basis(std::size_t node, std::size_t point) const {
@@ -74,36 +79,33 @@ std::array<double, 3> PatchFit::basis(std::size_t node, std::size_t point) const
           points_->position[1][point] - nodes_->position[1][node]};
 }
 
-int PatchFit::parity_class(Parity parity) const {
-  return static_cast<int>(std::find(class_parity_.begin(), class_parity_.end(), parity) -
-                          class_parity_.begin());
-}
-
 void PatchFit::residual(const FieldArray& values, FieldArray& residual) const {
   const int fields = static_cast<int>(field_parity_.size());
   const auto node_count = static_cast<std::int64_t>(nodes_->size());
   const std::size_t classes = class_parity_.size();
-  // The fits: (a, b) = N^+ sum_P c_Pn phi(x_P) s_P at every node.
+  // The fits: (a, b) = N^+ sum_P c_Pn phi(x_P) s_P at every node, all fields in one pass over the
+  // patch.
 #pragma omp parallel for schedule(static) if (node_count > kParallelThreshold)
   for (std::int64_t node = 0; node < node_count; ++node) {
     const auto n = static_cast<std::size_t>(node);
-    for (int f = 0; f < fields; ++f) {
-      std::array<double, 3> moment{};
-      for (std::int32_t cell : cells_->cells_of(n)) {
-        const auto p = static_cast<std::size_t>(cell);
-        const double weight =
-            points_->volume[p] / static_cast<double>(cells_->corners(p).size()) * values(f, p);
-        const std::array<double, 3> phi = basis(n, p);
+    std::array<std::array<double, 3>, kMaxFields> moment{};
+    for (std::int32_t cell : cells_->cells_of(n)) {
+      const auto p = static_cast<std::size_t>(cell);
+      const double share = points_->volume[p] / static_cast<double>(cells_->corners(p).size());
+      const std::array<double, 3> phi = basis(n, p);
+      for (int f = 0; f < fields; ++f) {
+        const double weight = share * values(f, p);
         for (std::size_t r = 0; r < 3; ++r)
-          moment[r] += weight * phi[r];
+          moment[static_cast<std::size_t>(f)][r] += weight * phi[r];
       }
+    }
+    for (int f = 0; f < fields; ++f) {
       const std::array<double, 9>& inverse =
-          inverse_normal_[n * classes + static_cast<std::size_t>(parity_class(
-                                            field_parity_[static_cast<std::size_t>(f)]))];
+          inverse_normal_[n * classes + field_class_[static_cast<std::size_t>(f)]];
+      const std::array<double, 3>& m = moment[static_cast<std::size_t>(f)];
       for (std::size_t r = 0; r < 3; ++r)
-        coefficient_(3 * f + static_cast<int>(r), n) = inverse[r * 3] * moment[0] +
-                                                       inverse[r * 3 + 1] * moment[1] +
-                                                       inverse[r * 3 + 2] * moment[2];
+        coefficient_[n][3 * static_cast<std::size_t>(f) + r] =
+            inverse[r * 3] * m[0] + inverse[r * 3 + 1] * m[1] + inverse[r * 3 + 2] * m[2];
     }
   }
   // rho_P = s_P - mean over the corners n of f_n(x_P).
@@ -113,16 +115,16 @@ void PatchFit::residual(const FieldArray& values, FieldArray& residual) const {
     const auto p = static_cast<std::size_t>(point);
     const std::span<const std::int32_t> corners = cells_->corners(p);
     const double share = 1.0 / static_cast<double>(corners.size());
-    for (int f = 0; f < fields; ++f) {
-      double fitted = 0.0;
-      for (std::int32_t corner : corners) {
-        const auto n = static_cast<std::size_t>(corner);
-        const std::array<double, 3> phi = basis(n, p);
-        fitted += coefficient_(3 * f, n) * phi[0] + coefficient_(3 * f + 1, n) * phi[1] +
-                  coefficient_(3 * f + 2, n) * phi[2];
-      }
-      residual(f, p) = values(f, p) - share * fitted;
+    std::array<double, kMaxFields> fitted{};
+    for (std::int32_t corner : corners) {
+      const auto n = static_cast<std::size_t>(corner);
+      const std::array<double, 3> phi = basis(n, p);
+      const std::array<double, 3 * kMaxFields>& c = coefficient_[n];
+      for (std::size_t f = 0; f < static_cast<std::size_t>(fields); ++f)
+        fitted[f] += c[3 * f] * phi[0] + c[3 * f + 1] * phi[1] + c[3 * f + 2] * phi[2];
     }
+    for (int f = 0; f < fields; ++f)
+      residual(f, p) = values(f, p) - share * fitted[static_cast<std::size_t>(f)];
   }
 }
 

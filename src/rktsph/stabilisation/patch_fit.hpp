@@ -32,10 +32,11 @@ namespace rktsph {
 
 class PatchFit {
  public:
+  static constexpr std::size_t kMaxFields = 4;
   PatchFit() = default;
   /// Patches of `cells` on the nodes `nodes` with the stress points `points` (positions and
   /// volumes; 2D); `mirror_axes[n]` has bit a set when node n lies on a mirror plane normal to a;
-  /// `parity` the parity of each field the fit will be given (at most two distinct ones).
+  /// `parity` the parity of each field the fit will be given (at most kMaxFields fields).
   PatchFit(const CellComplex& cells, const PointCloud& nodes, const PointCloud& points,
            std::span<const std::uint8_t> mirror_axes, std::span<const Parity> parity);
 
@@ -45,17 +46,18 @@ class PatchFit {
  private:
   // The linear functions (1, x - x_n, y - y_n) at stress point p seen from node n.
   std::array<double, 3> basis(std::size_t node, std::size_t point) const;
-  int parity_class(Parity parity) const;
 
   const CellComplex* cells_ = nullptr;
   const PointCloud* nodes_ = nullptr;
   const PointCloud* points_ = nullptr;
   std::vector<Parity> field_parity_;
-  std::vector<Parity> class_parity_;  // the distinct parities among the fields
+  std::vector<Parity> class_parity_;      // the distinct parities among the fields
+  std::vector<std::size_t> field_class_;  // each field's place in class_parity_
   // Per node and parity class, the pseudo-inverse of the patch's normal matrix on the functions
   // that class may use (the others' rows and columns zero), row-major 3 x 3.
   std::vector<std::array<double, 9>> inverse_normal_;
-  mutable FieldArray coefficient_;  // (a, b_x, b_y) of each field's fit at each node
+  // (a, b_x, b_y) of each field's fit, node by node (a cell reads its corners' whole rows).
+  mutable std::vector<std::array<double, 3 * kMaxFields>> coefficient_;
 };
 
 }  // namespace rktsph
