@@ -27,6 +27,7 @@
 #include "rktsph/simulation/simulation.hpp"
 #include "rktsph/stabilisation/flow_strength.hpp"
 #include "rktsph/stabilisation/patch_fit.hpp"
+#include "rktsph/stabilisation/strain_stiffness_control.hpp"
 #include "rktsph/validation/rest_checks.hpp"
 
 namespace rktsph {
@@ -195,7 +196,9 @@ TEST(PatchStrainStiffness, IsRefusedTogetherWithTheStrainHourglassStiffness) {
 TEST(PatchStrainStiffness, ScalesEachStressPointsStressByItsFactor) {
   Simulation simulation(triangle_block(1.0).description());
   const RkTaylorStep& step = simulation.step();
-  const StrainHourglassStiffness& control = step.strain_hourglass_stiffness();
+  const StrainStiffnessControl* strain = step.control<StrainStiffnessControl>();
+  ASSERT_NE(strain, nullptr);
+  const StrainHourglassStiffness& control = strain->stiffness();
   ASSERT_TRUE(control.active());
   const PhysicsModel& model = simulation.model();
   const NodeSets& nodes = simulation.nodes();
@@ -311,6 +314,19 @@ TEST(PatchStrainStiffness, LeavesABodyThatFlowsEverywhereAsWithoutIt) {
   }
   EXPECT_GT(largest, 0.0);
   EXPECT_GT(moved, 1e-9 * largest) << "the patch stress at psi = 1 changed nothing";
+}
+
+// On triangles the default control is the patch strain stiffness alone (no filter: its round
+// trip assumes the lattice's checkerboard; no cell stiffness: it acts on quadrilaterals), and an
+// elastic body's control does not follow flow nor carry a received strain.
+TEST(PatchStrainStiffness, IsTheOnlyDefaultControlOnTriangles) {
+  const Simulation simulation(triangle_block(0.7).description());
+  const auto& controls = simulation.step().controls();
+  ASSERT_EQ(controls.size(), 1u);
+  EXPECT_EQ(controls.front()->name(), "strain hourglass stiffness");
+  EXPECT_FALSE(controls.front()->follows_flow());
+  EXPECT_FALSE(controls.front()->carries_received_strain());
+  EXPECT_EQ(simulation.state().strain.point_count(), 0u);
 }
 
 }  // namespace

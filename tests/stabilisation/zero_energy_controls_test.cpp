@@ -17,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -28,9 +29,17 @@
 #include "rktsph/simulation/simulation.hpp"
 #include "rktsph/sph/adjoint_operator.hpp"
 #include "rktsph/stabilisation/hourglass_stiffness.hpp"
+#include "rktsph/stabilisation/hourglass_stiffness_control.hpp"
 
 namespace rktsph {
 namespace {
+
+// The cells' Flanagan-Belytschko stiffness of the step; throws (failing the test) where none acts.
+const HourglassStiffness& cell_stiffness_of(const Simulation& simulation) {
+  const auto* control = simulation.step().control<HourglassStiffnessControl>();
+  if (control == nullptr) throw std::runtime_error("the step has no cell hourglass stiffness");
+  return control->stiffness();
+}
 
 // rho = 2000 kg/m3, E = 10 MPa, nu = 0.3 (test::ElasticBlock): M = lambda + 2G, G.
 constexpr double kDensity = 2000.0;
@@ -51,7 +60,7 @@ test::ElasticBlock block_with_controls(double epsilon, double epsilon_s, double 
 
 TEST(HourglassStiffness, CellVectorsAndStiffnessOnTheLattice) {
   Simulation simulation(block_with_controls(1.0, 0.0).description());
-  const HourglassStiffness& control = simulation.step().hourglass_stiffness();
+  const HourglassStiffness& control = cell_stiffness_of(simulation);
   ASSERT_TRUE(control.active());
   ASSERT_EQ(control.corners.size(), simulation.nodes().stress_points.size());
   for (std::size_t p = 0; p < control.corners.size(); ++p) {
@@ -70,7 +79,7 @@ TEST(HourglassStiffness, CellVectorsAndStiffnessOnTheLattice) {
 // it in a flowing cell itself.
 TEST(HourglassStiffness, StrengthFollowsTheFlowAroundTheCell) {
   Simulation simulation(block_with_controls(1.0, 0.0).description());
-  HourglassStiffness control = simulation.step().hourglass_stiffness();
+  HourglassStiffness control = cell_stiffness_of(simulation);
   ASSERT_TRUE(control.active());
   // An elastic material keeps its strength next to flow.
   for (double ratio : control.near_flow)
@@ -126,7 +135,7 @@ void hourglass_acceleration(const HourglassStiffness& control, const FieldArray&
 TEST(HourglassStiffness, LeavesLinearFieldsAndRigidRotationAloneAndResistsTheCheckerboard) {
   const double epsilon = 0.4;
   Simulation simulation(block_with_controls(epsilon, 0.0).description());
-  const HourglassStiffness& control = simulation.step().hourglass_stiffness();
+  const HourglassStiffness& control = cell_stiffness_of(simulation);
   const NodeSets& nodes = simulation.nodes();
   const std::size_t n = nodes.sph_nodes.size();
   FieldArray displacement(2, n), forces(2, nodes.stress_points.size()), rate(2, n);
@@ -387,6 +396,31 @@ TEST(ZeroEnergyControlsSlow, StrainStiffnessIsStableBelowItsLimitAndRejectedAbov
     EXPECT_NE(std::string(error.what()).find("strain_stiffness"), std::string::npos)
         << error.what();
   }
+}
+
+// The step calls the controls the case asks for and no other
+// (stabilisation/zero_energy_control.hpp), and the state carries what they carry from step to step.
+TEST(ZeroEnergyControls, TheStepCallsExactlyTheControlsTheCaseAsksFor) {
+  auto names = [](const Simulation& simulation) {
+    std::vector<std::string> found;
+    for (const auto& control : simulation.step().controls())
+      found.emplace_back(control->name());
+    return found;
+  };
+  const Simulation every(block_with_controls(1.0, 0.5).description());
+  EXPECT_EQ(names(every), (std::vector<std::string>{"hourglass filter", "hourglass stiffness",
+                                                    "strain hourglass stiffness"}));
+  EXPECT_EQ(every.state().hourglass_force.point_count(), every.nodes().stress_points.size());
+  EXPECT_EQ(every.state().strain.point_count(), every.nodes().sph_nodes.size());
+  test::ElasticBlock bare = block_with_controls(0.0, 0.0);
+  bare.numerics =
+      "{courant: 0.5, stress_update: mean_velocity, hourglass: {enabled: false, "
+      "stiffness: 0, strain_stiffness: 0}}";
+  const Simulation none(bare.description());
+  EXPECT_TRUE(none.step().controls().empty());
+  EXPECT_EQ(none.step().control<HourglassStiffnessControl>(), nullptr);
+  EXPECT_EQ(none.state().hourglass_force.point_count(), 0u);
+  EXPECT_EQ(none.state().strain.point_count(), 0u);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 
@@ -19,11 +20,19 @@
 #include "../support/step_matrix.hpp"
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
+#include "rktsph/stabilisation/hourglass_filter.hpp"
 
 namespace rktsph {
 namespace {
 
 using test::spectral_radius;
+
+// The step's hourglass filter; throws (failing the test) where none acts.
+HourglassFilter& filter_of(const Simulation& simulation) {
+  HourglassFilter* filter = simulation.step().control<HourglassFilter>();
+  if (filter == nullptr) throw std::runtime_error("the step has no hourglass filter");
+  return *filter;
+}
 
 const char* kBar = R"(
 name: bar
@@ -180,7 +189,7 @@ TEST(RkTaylorStepSlow, WiderStencilsFilterEveryFieldAndStayStable) {
     block.numerics = fmt::format("{{h_over_dx: {}, courant: 0.5}}", h);
     Simulation simulation(block.description());
     EXPECT_FALSE(simulation.step().operators().compact_stencils) << h;
-    EXPECT_EQ(simulation.step().hourglass_fields(), HourglassFields::All) << h;
+    EXPECT_EQ(filter_of(simulation).fields(), HourglassFields::All) << h;
     EXPECT_LE(spectral_radius(simulation), 1.0 + 1e-9) << "h/dx " << h;
   }
 }
@@ -188,7 +197,7 @@ TEST(RkTaylorStepSlow, WiderStencilsFilterEveryFieldAndStayStable) {
 TEST(RkTaylorStep, VelocityOnlyFilterIsTheDefaultOnCompactStencilsAndRejectedOnWideOnes) {
   Simulation compact(stability_block(0.5, true).description());
   EXPECT_TRUE(compact.step().operators().compact_stencils);
-  EXPECT_EQ(compact.step().hourglass_fields(), HourglassFields::Velocity);
+  EXPECT_EQ(filter_of(compact).fields(), HourglassFields::Velocity);
   test::ElasticBlock block = stability_block(0.5, true);
   block.numerics = "{h_over_dx: 1.3, courant: 0.5, hourglass: {fields: velocity}}";
   try {
@@ -303,7 +312,7 @@ TEST(RkTaylorStep, FilterRemovesTheVelocityCheckerboardAndKeepsTheStressWhenAske
       values(v_x, i) = checkerboard_sign(nodes, i) * 0.01;
       values(sigma_xy, i) = checkerboard_sign(nodes, i) * 1000.0;
     }
-    simulation.step().filter_hourglass(values);
+    filter_of(simulation).filter(FilteredPart::All, values);
     int checked = 0;
     for (std::size_t i = 0; i < nodes.sph_nodes.size(); ++i) {
       const double x = nodes.sph_nodes.position[0][i], y = nodes.sph_nodes.position[1][i];

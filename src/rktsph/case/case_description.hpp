@@ -14,6 +14,7 @@
 
 #include "rktsph/core/error.hpp"
 #include "rktsph/core/small_tensor.hpp"
+#include "rktsph/core/step_choices.hpp"
 #include "rktsph/core/time_function.hpp"
 #include "rktsph/sph/kernel_type.hpp"
 
@@ -180,20 +181,6 @@ struct PoreFluidSpec {
   double checkerboard_stabilisation = 0.0;    ///< theta of the p_w checkerboard term (theory §6.6)
   std::optional<WaterTableSpec> water_table;  ///< none: fully saturated, p_w the excess only
   SourceLocation where;
-};
-
-/// How the nodal stress is updated in step 2 (docs/theory.md §2.2).
-enum class StressUpdate {
-  HalfStep,      ///< thesis: the gradient of the stress points' half-step velocities (eq. 2.3)
-  MeanVelocity,  ///< the lumped average of G((v^n + v^{n+1})/2), the velocity of u (eq. 2.5)
-};
-
-/// The fields the hourglass filter acts on (docs/theory.md §3.3).
-/// Unset in the case: Velocity where each stress point's stencil is its cell's corners, All
-/// with wider stencils (where the velocity-only filter is unstable).
-enum class HourglassFields {
-  Velocity,  ///< the velocity only: equilibrium stress states stay fixed points
-  All,       ///< every field (docs/theory.md §3.3); the total normal stress in the saturated model
 };
 
 /// epsilon of the cells' hourglass stiffness when the case does not set it (docs/theory.md §3.4):

@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "rktsph/case/case_description.hpp"
+#include "rktsph/core/time_function.hpp"
 #include "rktsph/materials/material.hpp"
 #include "rktsph/materials/overstress_integrator.hpp"
 #include "rktsph/physics/field_layout.hpp"

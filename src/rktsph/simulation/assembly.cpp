@@ -452,8 +452,8 @@ void Assembly::initialise_state() {
   state_.fields = FieldArray(model_->field_count(), n);
   state_.internal = FieldArray(model_->internal_count(), n);
   state_.displacement = FieldArray(d, n);
-  if (step_->strain_hourglass_stiffness().needs_received_strain()) state_.strain = FieldArray(3, n);
-  if (step_->hourglass_stiffness().active())
+  if (step_->carries_received_strain()) state_.strain = FieldArray(3, n);
+  if (step_->carries_cell_forces())
     state_.hourglass_force = FieldArray(2, nodes_.stress_points.size());
   for (std::size_t i = 0; i < n; ++i) {
     for (int a = 0; a < d; ++a)

@@ -66,24 +66,6 @@ void MovingConfiguration::to_midpoint_configuration(FieldArray& gradient, int fi
   }
 }
 
-void MovingConfiguration::rotate_cell_forces(const FieldArray& point_velocity_gradient, double dt,
-                                             FieldArray& force) const {
-  // The generalised force k q of a cell is a vector of the current axes: it turns with the cell's
-  // spin, as the stress does (eq. 9.2), or a rotated cell would resist hourglass modes along
-  // directions it no longer has.
-  const std::size_t nv = reference_.stress_points.size();
-  const double* dvx_dy = point_velocity_gradient.field(1);
-  const double* dvy_dx = point_velocity_gradient.field(2);
-  double* fx = force.field(0);
-  double* fy = force.field(1);
-  for (std::size_t p = 0; p < nv; ++p) {
-    const PlaneRotation q = hughes_winget_rotation(0.5 * (dvx_dy[p] - dvy_dx[p]), dt);
-    const double x = fx[p], y = fy[p];
-    fx[p] = q.c * x + q.s * y;
-    fy[p] = -q.s * x + q.c * y;
-  }
-}
-
 void MovingConfiguration::turn_faces(const State& state, double dt) {
   // The faces' normals at X + u + (dt/2) v (docs/theory.md §9.7): the traction-free condition of
   // the half-step and of the end of the step then acts on the faces where those values are.

@@ -47,12 +47,6 @@ class ConfigurationPolicy {
   }
   /// The faces turned to the nodes at X + u + (dt/2) v of `state` (§9.7).
   virtual void turn_faces(const State& state, double dt) { (void)state, (void)dt; }
-  /// The cells' hourglass forces turned with their spin over dt, from the stress points' gradient
-  /// of the mean velocity (eq. 9.2).
-  virtual void rotate_cell_forces(const FieldArray& point_velocity_gradient, double dt,
-                                  FieldArray& force) const {
-    (void)point_velocity_gradient, (void)dt, (void)force;
-  }
   /// After the step: the points moved with the displacement (§9.1).
   virtual void after_step(State& state) { (void)state; }
   /// The conditions whose faces turn with the body (the step's own conditions).
@@ -79,8 +73,6 @@ class MovingConfiguration final : public ConfigurationPolicy {
                                  std::span<const int> velocity_gradient, double dt,
                                  std::size_t count) const override;
   void turn_faces(const State& state, double dt) override;
-  void rotate_cell_forces(const FieldArray& point_velocity_gradient, double dt,
-                          FieldArray& force) const override;
   void after_step(State& state) override;
   void follow_faces(BoundaryConditions* faces) override { faces_ = faces; }
   const ConfigurationMotion* motion() const override { return &motion_; }

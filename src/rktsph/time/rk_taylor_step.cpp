@@ -52,12 +52,6 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
       velocity_gradient_of_fields_.push_back(model.velocity_field(a) * d + c);
       velocity_gradient_of_velocity_.push_back(a * d + c);
     }
-  // With wider stencils the velocity-only filter leaves the step unstable (spectral radius
-  // 1.00003-1.001 at h = 1.0-1.3 dx); the filter on every field keeps it below 1 (§3.3). Fixed
-  // at the first build, so that a rebuild never switches the filtered fields.
-  hourglass_fields_ = options.hourglass_fields.value_or(
-      operators_.compact_stencils ? HourglassFields::Velocity : HourglassFields::All);
-  filter_active_ = builder_.filter_active();
   viscosity_length_ = options.artificial_viscosity * reference.spacing;
   internal_parity_.assign(static_cast<std::size_t>(nk), kEven);
   for (int f = 0; f < nf; ++f)
@@ -70,22 +64,6 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
     for (int c = 0; c < d; ++c)
       gradient_parities_.push_back(
           static_cast<Parity>(model.parities()[static_cast<std::size_t>(f)] ^ (1u << c)));
-  std::vector<std::uint8_t> is_velocity(static_cast<std::size_t>(nf), 0);
-  for (int a = 0; a < d; ++a)
-    is_velocity[static_cast<std::size_t>(model.velocity_field(a))] = 1;
-  for (int f = 0; f < nf; ++f) {
-    if (hourglass_fields_ == HourglassFields::All || !model.feeds_momentum_only(f)) {
-      const Parity parity = model.parities()[static_cast<std::size_t>(f)];
-      filtered_fields_.push_back(f);
-      filtered_parities_.push_back(parity);
-      auto& part_fields = is_velocity[static_cast<std::size_t>(f)] ? filtered_velocity_fields_
-                                                                   : filtered_other_fields_;
-      auto& part_parities = is_velocity[static_cast<std::size_t>(f)] ? filtered_velocity_parities_
-                                                                     : filtered_other_parities_;
-      part_fields.push_back(f);
-      part_parities.push_back(parity);
-    }
-  }
   half_step_ = FieldArray(nf, nv + ns);
   point_gradient_ = FieldArray(nf * d, nv);
   // One array for the rates of step 1 (stress points) and step 2 (nodes): the first are dead
@@ -94,10 +72,13 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
   point_internal_ = FieldArray(nk, nv);
   point_velocity_ = FieldArray(d, nv);
   node_gradient_ = FieldArray(nf * d, ns);
-  hourglass_stiffness_ = build_hourglass_stiffness(reference, model, options.hourglass_stiffness);
-  if (hourglass_stiffness_.active()) {
-    hourglass_force_ = FieldArray(2, nv);
-    hourglass_factor_.assign(nv, 1.0);
+  controls_ =
+      make_zero_energy_controls(model, reference, options, operators_, builder_.filter_active(),
+                                conditions, configuration, *configuration_);
+  bool mean_velocity = options.stress_update == StressUpdate::MeanVelocity, follow_flow = false;
+  for (const auto& control : controls_) {
+    mean_velocity = mean_velocity || control->needs_mean_velocity();
+    follow_flow = follow_flow || control->follows_flow();
   }
   for (int a = 0; a < d; ++a)
     velocity_parities_.push_back(
@@ -107,38 +88,14 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
       velocity_gradient_parities_.push_back(
           static_cast<Parity>(velocity_parities_[static_cast<std::size_t>(a)] ^ (1u << c)));
   every_gradient_.assign(static_cast<std::size_t>(d * d), 1);
-  if (hourglass_stiffness_.active() || options.stress_update == StressUpdate::MeanVelocity)
-    mean_velocity_ = FieldArray(d, ns);
+  if (mean_velocity) mean_velocity_ = FieldArray(d, ns);
   if (options.stress_update == StressUpdate::MeanVelocity) {
     start_fields_ = FieldArray(nf, ns);
     start_internal_ = FieldArray(nk, ns);
     mean_point_gradient_ = FieldArray(d * d, nv);
     mean_node_gradient_ = FieldArray(d * d, ns);
   }
-  if (filter_active_) {
-    const auto values = filtered_fields_.size();
-    filter_values_.assign(values * ns, 0.0);
-    filter_points_.assign(values * nv, 0.0);
-    filter_round_trip_.assign(values * ns, 0.0);
-    if (model.pore_pressure_field() >= 0 && hourglass_fields_ == HourglassFields::All)
-      pore_buffer_.assign(ns, 0.0);
-  }
-  // On the first tables: it keeps the imposed stresses of t = 0 as its reference (eq. 3.8).
-  strain_hourglass_stiffness_ = StrainHourglassStiffness(
-      model, operators_.nodes_to_points, configuration.stress_points.volume,
-      conditions.mirror_axes(), conditions.constrained_stress(), reference.node_material, nodes_,
-      options.strain_hourglass_stiffness, options.strain_control);
-  // The patch strain stiffness follows viscoplastic flow as the lattice's control does (eq.
-  // 3.14); with elastic materials only its factors would all be 1, so none are kept.
-  if (strain_hourglass_stiffness_.active() && options.strain_control == StrainControl::Patch) {
-    patch_near_flow_ = near_flow_ratios(nodes_.cells, model, kPatchNearFlowFraction);
-    if (std::any_of(patch_near_flow_.begin(), patch_near_flow_.end(),
-                    [](double ratio) { return ratio != 1.0; }))
-      patch_factor_.assign(nv, 1.0);
-    else
-      patch_near_flow_.clear();
-  }
-  if (hourglass_stiffness_.active() || !patch_factor_.empty()) {
+  if (follow_flow) {
     point_flowing_.assign(nv, 0);
     node_near_flow_.assign(ns, 0);
   }
@@ -331,13 +288,27 @@ void RkTaylorStep::update_flow_strengths(const State& state) {
   if (!moving) model_.flowing(nodes_.node_material, state.fields, state.internal, node_near_flow_);
   cell_flow_states(nodes_.cells, node_near_flow_, moving, point_flowing_);
   // node_near_flow_ is the factors' scratch from here on.
-  const double psi = options_.hourglass_plastic_fraction;
-  if (hourglass_stiffness_.active())
-    flow_strength_factors(nodes_.cells, hourglass_stiffness_.near_flow, point_flowing_, psi,
-                          node_near_flow_, hourglass_factor_);
-  if (!patch_factor_.empty())
-    flow_strength_factors(nodes_.cells, patch_near_flow_, point_flowing_, psi, node_near_flow_,
-                          patch_factor_);
+  for (const auto& control : controls_)
+    if (control->follows_flow())
+      control->follow_flow(nodes_.cells, point_flowing_, options_.hourglass_plastic_fraction,
+                           node_near_flow_);
+}
+
+bool RkTaylorStep::carries_received_strain() const {
+  return std::any_of(controls_.begin(), controls_.end(),
+                     [](const auto& control) { return control->carries_received_strain(); });
+}
+
+bool RkTaylorStep::carries_cell_forces() const {
+  return std::any_of(controls_.begin(), controls_.end(),
+                     [](const auto& control) { return control->carries_cell_forces(); });
+}
+
+void RkTaylorStep::filter_fields(FilteredPart part, double time, FieldArray& fields) {
+  bool changed = false;
+  for (const auto& control : controls_)
+    changed = control->filter(part, fields) || changed;
+  if (changed) conditions_.apply(time, fields);
 }
 
 void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
@@ -383,10 +354,8 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   // Displacement by the trapezoidal rule: half with v^n now, the v^{n+1} half in advance(). The
   // strain hourglass stiffness acts on this u^{n+1/2} (docs/theory.md §3.4).
   add_half_step_displacement(state, dt);
-  if (strain_hourglass_stiffness_.active())
-    strain_hourglass_stiffness_.add_stress(
-        model_, operators_.nodes_to_points, nodes_.cells.materials(), state.displacement,
-        state.strain, point_gradient_, dt, state.fields, patch_factor_, half_step_);
+  for (const auto& control : controls_)
+    control->correct_half_step(state, point_gradient_, dt, half_step_);
   // Step 2: gradient of the half-step values at the SPH nodes, full step from Phi^n.
   apply_operator(operators_.points_to_nodes, half_step_, model_.parities(), nullptr,
                  &node_gradient_);
@@ -395,7 +364,8 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   configuration_->to_midpoint_configuration(node_gradient_, model_.field_count(),
                                             velocity_gradient_of_fields_, dt, ns);
   if (!mean_update)
-    strain_hourglass_stiffness_.integrate_strain(model_, node_gradient_, dt, state.strain);
+    for (const auto& control : controls_)
+      control->record_strain_rate(node_gradient_, dt, state);
   model_.flux_rate(nodes_.node_material, node_gradient_, rate_);
   const auto& boundary = operators_.boundary_nodes;
   const int nf = model_.field_count();
@@ -405,13 +375,9 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   if (mean_velocity_.field_count() > 0)
     for (int a = 0; a < d; ++a)
       parallel_copy(state.fields.field(model_.velocity_field(a)), ns, mean_velocity_.field(a));
-  // The cells' hourglass forces at t + dt/2 (docs/theory.md eq. 3.9).
-  if (hourglass_stiffness_.active()) {
-    const std::array<int, 2> velocity{model_.velocity_field(0), model_.velocity_field(1)};
-    advance_hourglass_force(hourglass_stiffness_, state.fields, velocity, 0.5 * dt,
-                            hourglass_factor_, state.hourglass_force, hourglass_force_);
-    add_hourglass_acceleration(hourglass_stiffness_, hourglass_force_, velocity, rate_);
-  }
+  // The controls' forces (the cells' hourglass forces at t + dt/2, docs/theory.md eq. 3.9).
+  for (const auto& control : controls_)
+    control->add_node_rate(state, dt, rate_);
   if (mean_update) {  // Phi^n of the fields advanced after the velocity (eq. 2.5)
     for (int f = 0; f < nf; ++f)
       if (model_.feeds_momentum_only(f))
@@ -430,13 +396,11 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   configuration_->turn_faces(state, dt);  // to x^{n+1}: u holds u^n + (dt/2) v^n, v is v^{n+1}
   project_free_faces(boundary_start_, state.fields, false);
   conditions_.apply(state.time + dt, state.fields);
-  if (filter_active_) {
-    // After the conditions: a fixed node's pre-condition velocity carries its reaction, which the
-    // round trip would otherwise spread to its neighbours; then again, as the filter moves them.
-    // With the mean-velocity update the other fields are filtered after they are redone.
-    filter_hourglass(state.fields, mean_update ? FilterPart::Velocity : FilterPart::All);
-    conditions_.apply(state.time + dt, state.fields);
-  }
+  // After the conditions: a fixed node's pre-condition velocity carries its reaction, which the
+  // filter's round trip would otherwise spread to its neighbours; then again, as the filter moves
+  // them. With the mean-velocity update the other fields are filtered after they are redone.
+  filter_fields(mean_update ? FilteredPart::Velocity : FilteredPart::All, state.time + dt,
+                state.fields);
 }
 
 void RkTaylorStep::finish_with_mean_velocity(State& state, double dt) {
@@ -454,12 +418,8 @@ void RkTaylorStep::finish_with_mean_velocity(State& state, double dt) {
     }
   if (options_.stress_update == StressUpdate::MeanVelocity)
     advance_stress_with_mean_velocity(state, dt);
-  if (hourglass_stiffness_.active()) {
-    if (mean_point_gradient_.field_count() > 0)
-      configuration_->rotate_cell_forces(mean_point_gradient_, dt, state.hourglass_force);
-    advance_hourglass_force(hourglass_stiffness_, mean_velocity_, {0, 1}, dt, hourglass_factor_,
-                            state.hourglass_force, state.hourglass_force);
-  }
+  for (const auto& control : controls_)
+    control->finish(mean_velocity_, mean_point_gradient_, dt, state);
 }
 
 void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
@@ -490,7 +450,8 @@ void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
       parallel_copy(start_fields_.field(f), ns, state.fields.field(f));
   parallel_copy(start_internal_.data().data(), start_internal_.data().size(),
                 state.internal.data().data());
-  strain_hourglass_stiffness_.integrate_strain(model_, node_gradient_, dt, state.strain);
+  for (const auto& control : controls_)
+    control->record_strain_rate(node_gradient_, dt, state);
   model_.flux_rate(nodes_.node_material, node_gradient_, rate_);
   // With the spin of the mean velocity (eq. 9.2).
   configuration_->rotate_stress(mean_node_gradient_, velocity_gradient_of_velocity_, dt, ns,
@@ -499,10 +460,7 @@ void RkTaylorStep::advance_stress_with_mean_velocity(State& state, double dt) {
                  AdvancedFields::Others);
   project_free_faces(boundary_start_, state.fields, false);
   conditions_.apply(state.time + dt, state.fields);
-  if (filter_active_ && hourglass_fields_ == HourglassFields::All) {
-    filter_hourglass(state.fields, FilterPart::OtherFields);
-    conditions_.apply(state.time + dt, state.fields);
-  }
+  filter_fields(FilteredPart::OtherFields, state.time + dt, state.fields);
 }
 
 void RkTaylorStep::close_incomplete_nodes(const State& state) {
@@ -555,77 +513,6 @@ void RkTaylorStep::project_free_faces(const FieldArray& start, FieldArray& value
         nodes_.node_material[static_cast<std::size_t>(node)], normals,
         std::span<const double>(start_values, static_cast<std::size_t>(nf)), values,
         boundary_rows ? row : static_cast<std::size_t>(node));
-  }
-}
-
-void RkTaylorStep::filter_hourglass(FieldArray& fields, FilterPart part) {
-  if (!filter_active_) return;
-  // Saturated model: sigma' and p_w both jump at a drained face while the total stress does not;
-  // filtering them separately spreads that boundary layer and drains undrained soil. So the
-  // filter acts on the total normal stress sigma'_aa - alpha p_w and leaves p_w untouched
-  // (docs/theory.md §6.5).
-  const int pore = hourglass_fields_ == HourglassFields::All && part != FilterPart::Velocity
-                       ? model_.pore_pressure_field()
-                       : -1;
-  const std::vector<int>& list = part == FilterPart::All        ? filtered_fields_
-                                 : part == FilterPart::Velocity ? filtered_velocity_fields_
-                                                                : filtered_other_fields_;
-  const std::vector<Parity>& parities = part == FilterPart::All        ? filtered_parities_
-                                        : part == FilterPart::Velocity ? filtered_velocity_parities_
-                                                                       : filtered_other_parities_;
-  if (list.empty()) return;
-  const std::size_t count_nodes = nodes_.sph_nodes.size();
-  const double alpha = model_.biot_coefficient();
-  auto shift_normal_stress = [&](double sign) {
-    for (int a = 0; a < 3; ++a) {
-      const int f = model_.stress_field(a, a);
-      if (f < 0) continue;
-      double* stress = fields.field(f);
-      for (std::size_t i = 0; i < count_nodes; ++i)
-        stress[i] += sign * alpha * pore_buffer_[i];
-    }
-  };
-  if (pore >= 0) {
-    std::copy_n(fields.field(pore), count_nodes, pore_buffer_.begin());
-    shift_normal_stress(-1.0);
-  }
-
-  // f <- f - kappa (r1 - Pi r1), r1 = f - Pi f, Pi = round trip through the stress points
-  // (docs/theory.md §3.3; symbol 1 - kappa (1 - a^2)^2, removes the checkerboard).
-  // The round trip works on node-major (interleaved) copies: its gathers reach ~21 sources per
-  // row, and one cache line then brings all the fields of a source (3x faster on large lattices).
-  const auto nf = static_cast<int>(list.size());
-  const int* filtered = list.data();
-  const auto nodes = static_cast<std::int64_t>(count_nodes);
-  auto round_trip = [&](const std::vector<double>& in) {
-    apply_interpolation_interleaved(operators_.filter_to_points, in, parities, filter_points_);
-    apply_interpolation_interleaved(operators_.filter_to_nodes, filter_points_, parities,
-                                    filter_round_trip_);
-  };
-  double* values = filter_values_.data();
-#pragma omp parallel for schedule(static) if (nodes > kParallelThreshold)
-  for (std::int64_t i = 0; i < nodes; ++i)
-    for (int f = 0; f < nf; ++f)
-      values[i * nf + f] = fields.field(filtered[f])[i];
-  round_trip(filter_values_);
-  // The residual in place of the copies: the fields still hold the values.
-  double* residual = filter_values_.data();
-  const double* trip = filter_round_trip_.data();
-  const auto count = nodes * nf;
-#pragma omp parallel for schedule(static) if (count > kParallelThreshold)
-  for (std::int64_t k = 0; k < count; ++k)
-    residual[k] = values[k] - trip[k];
-  round_trip(filter_values_);
-  const double kappa = options_.hourglass_kappa;
-#pragma omp parallel for schedule(static) if (nodes > kParallelThreshold)
-  for (std::int64_t i = 0; i < nodes; ++i)
-    for (int f = 0; f < nf; ++f) {
-      double& value = fields.field(filtered[f])[i];
-      value = value - kappa * (residual[i * nf + f] - trip[i * nf + f]);
-    }
-  if (pore >= 0) {
-    std::copy_n(pore_buffer_.begin(), count_nodes, fields.field(pore));
-    shift_normal_stress(1.0);
   }
 }
 

@@ -7,6 +7,8 @@
 // the velocity only; every other field is then advanced from Phi^n with the lumped average of the
 // stress points' gradients of (v^n + v^{n+1})/2, the velocity of the displacement, and the cells'
 // hourglass forces (eq. 3.9) with the same velocity; in V3 after the pressure projection.
+// The zero-energy controls (stabilisation/zero_energy_control.hpp) act at the step's named hooks;
+// the step knows none of them by name.
 // At nodes whose cells are incomplete the momentum balance is the adjoint of the stress points'
 // velocity gradient, and the level-n part of the strain rate is the lumped average of theirs
 // (docs/theory.md §5.3).
@@ -29,10 +31,10 @@
 #include "rktsph/physics/state.hpp"
 #include "rktsph/sph/adjoint_operator.hpp"
 #include "rktsph/sph/operators.hpp"
-#include "rktsph/stabilisation/hourglass_stiffness.hpp"
-#include "rktsph/stabilisation/strain_hourglass_stiffness.hpp"
+#include "rktsph/stabilisation/zero_energy_control.hpp"
 #include "rktsph/time/configuration_policy.hpp"
 #include "rktsph/time/step_operators.hpp"
+#include "rktsph/time/zero_energy_controls.hpp"
 
 namespace rktsph {
 
@@ -61,20 +63,28 @@ class RkTaylorStep {
   const StepOperators& operators() const { return operators_; }
   const StepOptions& options() const { return options_; }
   const OperatorOptions& operator_options() const { return builder_.operator_options(); }
-  /// The fields the hourglass filter acts on (resolved from the stencils when the case is silent).
-  HourglassFields hourglass_fields() const { return hourglass_fields_; }
   /// Rebuilds the operators on `configuration` and what the step derives from them: all of them on
   /// a fixed configuration; on a moving one the step's weights, and its stencils and the filter's
   /// tables once a node has moved the search distance since the last search (docs/theory.md §9.5).
   void rebuild_operators(const Configuration& configuration);
-  const HourglassStiffness& hourglass_stiffness() const { return hourglass_stiffness_; }
-  const StrainHourglassStiffness& strain_hourglass_stiffness() const {
-    return strain_hourglass_stiffness_;
+  /// The zero-energy controls that act, in the order the step calls them.
+  const ZeroEnergyControls& controls() const { return controls_; }
+  /// The control of type Control, or null if none of that type acts.
+  template <class Control>
+  Control* control() const {
+    for (const auto& control : controls_)
+      if (auto* found = dynamic_cast<Control*>(control.get())) return found;
+    return nullptr;
   }
-  /// Records the imposed stresses of the initial state (after its conditions), the reference of
-  /// the strain hourglass stiffness at constrained nodes (docs/theory.md eq. 3.8).
+  /// Whether a control carries the strain the nodal stress received (State::strain) or the cells'
+  /// generalised forces (State::hourglass_force) from step to step.
+  bool carries_received_strain() const;
+  bool carries_cell_forces() const;
+  /// The initial state after its conditions, handed to the controls (the strain stiffness keeps
+  /// its imposed stresses as the reference of eq. 3.8).
   void set_initial_state(const State& state) {
-    strain_hourglass_stiffness_.set_reference(state.fields);
+    for (const auto& control : controls_)
+      control->start(state);
   }
   void set_projection(StepProjection* projection) { projection_ = projection; }
   /// The conditions whose faces follow the moving configuration (policy CurrentConfiguration):
@@ -93,8 +103,6 @@ class RkTaylorStep {
   void restore_checkpoint(CheckpointIn& in);
   /// The motion of the configuration (policy CurrentConfiguration), or null.
   const ConfigurationMotion* motion() const { return configuration_->motion(); }
-  /// Applies the hourglass filter of step 3 alone (docs/theory.md eq. 3.1); no-op when it is off.
-  void filter_hourglass(FieldArray& fields) { filter_hourglass(fields, FilterPart::All); }
 
  private:
   void bind_operators(const Configuration& configuration);
@@ -106,16 +114,17 @@ class RkTaylorStep {
   /// u += dt/2 v, one half of the trapezoidal displacement update.
   void add_half_step_displacement(State& state, double dt) const;
   void step_stress_points(const State& state, double dt);
-  // The cells' flow states and the controls' strengths from them (eqs. 3.10, 3.14).
+  // The cells' flow states, handed to the controls that follow flow (eqs. 3.10, 3.14).
   void update_flow_strengths(const State& state);
+  // The controls' filters on `part` of the fields, then the conditions of `time` again if one
+  // changed them.
+  void filter_fields(FilteredPart part, double time, FieldArray& fields);
   void step_boundary_nodes(const State& state, double dt);
   void step_nodes(State& state, double dt);
   void project_free_faces(const FieldArray& start, FieldArray& values, bool boundary_rows) const;
   void close_incomplete_nodes(const State& state);
   void advance_stress_with_mean_velocity(State& state, double dt);
   void finish_with_mean_velocity(State& state, double dt);
-  enum class FilterPart { All, Velocity, OtherFields };
-  void filter_hourglass(FieldArray& fields, FilterPart part);
 
   const PhysicsModel& model_;
   const NodeSets& nodes_;  // the reference configuration: materials, cells
@@ -132,8 +141,6 @@ class RkTaylorStep {
   double surface_seconds_ = 0.0;
   // Where dv_a/dx_c sits (a * d + c): in a gradient of every field, in one of the velocity only.
   std::vector<int> velocity_gradient_of_fields_, velocity_gradient_of_velocity_;
-  HourglassFields hourglass_fields_ = HourglassFields::Velocity;
-  bool filter_active_ = false;
   // Moving configurations: where the stencils were last searched and the filter built, and the
   // count of searches (docs/theory.md §9.5).
   Configuration search_configuration_;
@@ -141,17 +148,12 @@ class RkTaylorStep {
   double viscosity_length_ = 0.0;  // alpha * dx of the artificial viscosity (0 = off)
   const BoundaryConditions& conditions_;
   StepProjection* projection_ = nullptr;
-  HourglassStiffness hourglass_stiffness_;  // docs/theory.md §3.4
-  StrainHourglassStiffness strain_hourglass_stiffness_;
+  ZeroEnergyControls controls_;  // docs/theory.md §3.3-§3.4
   std::vector<std::int32_t> boundary_material_;
   std::vector<Parity> internal_parity_;      // boundary rows whose stress increments are projected
   std::vector<std::uint8_t> momentum_flux_;  // 1 for the fields whose gradient feeds the momentum
   std::vector<std::uint8_t> velocity_gradient_fields_;  // 1 for the gradient fields of v
   std::vector<Parity> gradient_parities_;               // of each gradient field f * d + c
-  std::vector<int> filtered_fields_;                    // the fields the hourglass filter acts on
-  std::vector<Parity> filtered_parities_;
-  std::vector<int> filtered_velocity_fields_, filtered_other_fields_;  // the two parts of it
-  std::vector<Parity> filtered_velocity_parities_, filtered_other_parities_;
 
   // Scratch, allocated once.
   FieldArray half_step_;  // [stress points ; SPH nodes] at t + dt/2
@@ -165,16 +167,8 @@ class RkTaylorStep {
   FieldArray boundary_rate_;
   FieldArray boundary_internal_;
   FieldArray node_gradient_;
-  FieldArray hourglass_force_;                // k q of every cell at t + dt/2 (eq. 3.9)
-  std::vector<double> hourglass_factor_;      // of eq. 3.9, from the cells' flow (eq. 3.10)
   std::vector<std::uint8_t> point_flowing_;   // cells: 1 flows, 2 has flowed, 0 never (3.10)
   std::vector<std::uint8_t> node_near_flow_;  // nodes: flowed, then scratch of the factors
-  std::vector<double> patch_near_flow_;       // r_P of the patch stiffness (eq. 3.14)
-  std::vector<double> patch_factor_;  // of the patch stiffness, empty unless it follows flow (3.14)
-  std::vector<double> filter_values_;  // node-major copies for the round trip, then its residual
-  std::vector<double> filter_points_;
-  std::vector<double> filter_round_trip_;
-  std::vector<double> pore_buffer_;  // p_w kept out of the filter (saturated model)
   // The mean-velocity stress update (eq. 2.5) and the hourglass forces (eq. 3.9).
   AdjointOperator node_average_;  // lumped average over every node
   std::vector<std::int32_t> every_node_, no_own_value_;

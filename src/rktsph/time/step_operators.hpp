@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "rktsph/case/case_description.hpp"
+#include "rktsph/core/step_choices.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/physics/state.hpp"
 #include "rktsph/sph/adjoint_operator.hpp"
