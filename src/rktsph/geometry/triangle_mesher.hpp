@@ -27,7 +27,7 @@ inline constexpr int kSmoothingSweeps = 10;
 /// parallel to each edge (near-equilateral triangles), a row point left out nearer than
 /// kBoundaryLayerClearance of a segment to another point or edge.
 inline constexpr double kBoundaryLayerSpacing = 0.7;
-inline constexpr int kBoundaryLayerRows = 1;
+inline constexpr int kBoundaryLayerRows = 2;
 inline constexpr double kBoundaryLayerClearance = 0.75;
 
 /// Meshes the shapes of a 2D `geometry` with triangles whose edges are at most geometry.spacing.
