@@ -191,11 +191,16 @@ struct BoundaryLayer {
 };
 BoundaryLayer boundary_layer(const GeometrySpec& geometry, double h) {
   const std::vector<Segment> edges = shape_edges(geometry);
-  const std::vector<bool> free = free_edges(edges);
   BoundaryLayer layer;
   const double target = kBoundaryLayerSpacing * h;
   PointBins placed(kBoundaryLayerClearance * target);
   std::vector<double> spacing(edges.size(), 0.0);
+  std::vector<bool> free = free_edges(edges);
+  // An edge shorter than kBoundaryLayerShortest layer segments (the sides of a polygon drawn for
+  // a circle) is left to refinement: with such edges split beforehand it did not end on a 48-gon.
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    if (std::sqrt(CGAL::to_double(edges[e].squared_length())) < kBoundaryLayerShortest * target)
+      free[e] = false;
   for (std::size_t e = 0; e < edges.size(); ++e) {
     const Point& a = edges[e].source();
     const Point& b = edges[e].target();

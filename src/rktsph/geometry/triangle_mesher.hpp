@@ -29,6 +29,7 @@ inline constexpr int kSmoothingSweeps = 10;
 inline constexpr double kBoundaryLayerSpacing = 0.7;
 inline constexpr int kBoundaryLayerRows = 2;
 inline constexpr double kBoundaryLayerClearance = 0.75;
+inline constexpr double kBoundaryLayerShortest = 4.0;
 
 /// Meshes the shapes of a 2D `geometry` with triangles whose edges are at most geometry.spacing.
 /// Shapes may overlap or touch (the later shape's material wins, as on the lattice) and their
