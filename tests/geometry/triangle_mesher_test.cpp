@@ -172,6 +172,71 @@ TEST(TriangleMesher, NodesOnAStraightEdgeLieExactlyOnIt) {
   EXPECT_GE(on_top, static_cast<std::size_t>(std::ceil(4.1 / 0.3)) + 1);
 }
 
+// The boundary layer (docs/theory.md §3.6): each straight edge is split into equal segments of
+// at most kBoundaryLayerSpacing h, and the triangles along it, away from the shape's corners, are
+// equilateral (the first row sits at s sqrt(3)/2, staggered by s/2), so that a node on the edge
+// sees its cells symmetrically. Their width s sqrt(3)/2 is far above the thin edge triangles of
+// refinement alone, so the narrowest cell, which sets the step (§4.8), lies inside the body.
+TEST(TriangleMesher, StraightEdgesCarryALayerOfEquilateralTriangles) {
+  struct Case {
+    const char* name;
+    std::vector<Vec3> outline;
+    double spacing;
+  };
+  const std::vector<Case> cases = {
+      {"rectangle", {{0.0, -2.9, 0.0}, {4.1, -2.9, 0.0}, {4.1, 0.0, 0.0}, {0.0, 0.0, 0.0}}, 0.3},
+      {"2:1 slope", slope(), 0.37},
+      {"L", l_shape(), 0.25}};
+  for (const Case& test : cases) {
+    SCOPED_TRACE(test.name);
+    const double h = test.spacing;
+    const NodeSets nodes =
+        build_triangle_node_sets(triangles(h, {polygon(test.outline, "soil")}), {"soil"});
+    const auto& x = nodes.sph_nodes.position[0];
+    const auto& y = nodes.sph_nodes.position[1];
+    const auto near_a_vertex = [&](double px, double py) {
+      for (const Vec3& v : test.outline)
+        if (std::hypot(px - v[0], py - v[1]) < 2.0 * h) return true;
+      return false;
+    };
+    // The nodes on each edge: equal gaps of at most 0.7 h.
+    const std::vector<Vec3>& v = test.outline;
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const Vec3& a = v[k];
+      const Vec3& b = v[(k + 1) % v.size()];
+      const double length = std::hypot(b[0] - a[0], b[1] - a[1]);
+      std::vector<double> along;
+      for (std::size_t i = 0; i < x.size(); ++i)
+        if (distance_to_segment(x[i], y[i], a, b) < 1e-9 * length)
+          along.push_back(std::hypot(x[i] - a[0], y[i] - a[1]));
+      std::sort(along.begin(), along.end());
+      ASSERT_GE(along.size(), 2u);
+      const double gap = length / static_cast<double>(along.size() - 1);
+      EXPECT_LE(gap, kBoundaryLayerSpacing * h * (1.0 + 1e-9));
+      for (std::size_t i = 1; i < along.size(); ++i)
+        EXPECT_NEAR(along[i] - along[i - 1], gap, 1e-9 * length) << "edge " << k;
+    }
+    // The triangles with an edge on the outline, away from the corners: equilateral.
+    std::size_t layer = 0;
+    for (std::size_t p = 0; p < nodes.cells.cell_count(); ++p) {
+      const CellCorners c = nodes.cells.corner_positions(nodes.sph_nodes, p);
+      const double cx = (c.x[0] + c.x[1] + c.x[2]) / 3.0, cy = (c.y[0] + c.y[1] + c.y[2]) / 3.0;
+      if (near_a_vertex(cx, cy)) continue;
+      int on_outline = 0;
+      for (int k = 0; k < 3; ++k)
+        on_outline += distance_to_outline(v, c.x[k], c.y[k]) < 1e-9 * h;
+      if (on_outline < 2) continue;
+      ++layer;
+      EXPECT_NEAR(squared_smallest_sine(c), 0.75, 1e-9) << "cell " << p;
+    }
+    EXPECT_GT(layer, 20u);
+    // The narrowest cell: 0.33-0.35 h measured on these shapes and the bar of
+    // triangles-bar-wave-2d (refinement's triangles inside the body), against 0.22-0.25 h from
+    // the thin triangles refinement alone leaves along straight edges.
+    EXPECT_GE(smallest_cell_width(nodes.cells, nodes.sph_nodes), 0.3 * h);
+  }
+}
+
 TEST(TriangleMesher, NoTriangleStraddlesAMaterialBoundary) {
   // A weak zone listed after the soil it lies in, off any lattice.
   const std::vector<Vec3> weak = {{2.03, 1.07, 0.0}, {5.31, 1.19, 0.0}, {3.13, 3.71, 0.0}};

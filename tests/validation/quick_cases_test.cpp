@@ -65,11 +65,11 @@ const std::map<std::string, std::map<std::string, std::string>>& known_open_chec
          "(1.1 % between 6 and 8 cells in the full case; docs/theory.md §9.11)"}}},
       {"triangles-bar-wave-2d",
        {{"max_vy_ratio",
-         "the piston's velocity step on the irregular cells at x = 0 kicks v_y to 0.019 V0 in its "
-         "first steps, as on the full mesh (the same at dx = 10 and 5 mm: the kick of a "
-         "discontinuity on a lopsided cell patch, which does not shrink with dx); it decays as "
-         "the front spreads (4e-3 V0 beyond 0.05 m, 5e-4 V0 at mid-bar). Not a mode: a ramped "
-         "piston gives 9e-3 over 5 dx/c_p, 1.6e-3 over 20 (docs/theory.md §8.11)"}}},
+         "the piston's velocity step, a few cells wide, enters refinement's irregular cells just "
+         "past the boundary layer (x = 1.6 dx) and kicks v_y to 0.0062 V0 (0.0102 on the full "
+         "mesh; 0.019 before the layer, whose symmetric cells at the piston give none); it decays "
+         "as the front spreads (3.4e-3 V0 beyond 0.05 m, 4.6e-4 V0 by mid-bar). Not a mode: it "
+         "scales with the steepness of the front on irregular cells (docs/theory.md §8.11)"}}},
       {"vpw-vertical-cut-footing", {{"contact_pressure_oddeven_ratio", plastic_edge}}},
       {"ld-vertical-cut-footing", {{"contact_pressure_oddeven_ratio", dry_plastic_edge}}},
       {"ld-slope-cohesive",

@@ -12,8 +12,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
+#include <set>
 #include <utility>
 
 #include "rktsph/geometry/shapes.hpp"
@@ -103,17 +106,169 @@ void mark_domain(Triangulation& triangulation, const GeometrySpec& geometry) {
     face->set_in_domain(inside[id]);
 }
 
-// The shapes' edges as constraints, the domain marked, and Delaunay refinement to edges at most h
-// and angles at least arcsin(sqrt(B)) but where an input angle is smaller.
-void mesh_shapes(Triangulation& triangulation, const GeometrySpec& geometry) {
+using Segment = Kernel::Segment_2;
+
+// Every edge of every shape, in the order of the shapes and their vertices.
+std::vector<Segment> shape_edges(const GeometrySpec& geometry) {
+  std::vector<Segment> edges;
   for (const ShapeSpec& shape : geometry.shapes) {
     const std::vector<Point> outline = shape_outline(shape);
     for (std::size_t k = 0; k < outline.size(); ++k)
-      triangulation.insert_constraint(outline[k], outline[(k + 1) % outline.size()]);
+      edges.emplace_back(outline[k], outline[(k + 1) % outline.size()]);
   }
+  return edges;
+}
+
+// Whether edge `e` meets no other shape edge but at a shared end point (exact predicates), and
+// meets those at 60° or more: such an edge gets a boundary layer; one that another edge crosses or
+// overlaps, or that makes a sharp corner, is left to refinement.
+std::vector<bool> free_edges(const std::vector<Segment>& edges) {
+  std::vector<bool> free(edges.size(), true);
+  for (std::size_t a = 0; a < edges.size(); ++a)
+    for (std::size_t b = a + 1; b < edges.size(); ++b) {
+      const Segment& s = edges[a];
+      const Segment& t = edges[b];
+      if (s.is_degenerate() || t.is_degenerate() || !CGAL::do_intersect(s, t)) continue;
+      // Two edges of one vertex touch only there unless they run on along one line.
+      bool only_at_vertex = false;
+      for (const Point& p : {s.source(), s.target()})
+        if (p == t.source() || p == t.target()) {
+          const Point& other_s = p == s.source() ? s.target() : s.source();
+          const Point& other_t = p == t.source() ? t.target() : t.source();
+          only_at_vertex = !CGAL::collinear(p, other_s, other_t) ||
+                           CGAL::angle(other_s, p, other_t) == CGAL::OBTUSE;
+          // Two edges meeting at less than 60°, the angle below which Delaunay refinement is not
+          // proven to end: refinement's own splitting about the corner (CGAL's clusters) is
+          // kept there; with the edges split evenly beforehand it did not end on a 2:1 toe.
+          const double ux = other_s.x() - p.x(), uy = other_s.y() - p.y();
+          const double vx = other_t.x() - p.x(), vy = other_t.y() - p.y();
+          if (ux * vx + uy * vy > 0.5 * std::hypot(ux, uy) * std::hypot(vx, vy))
+            only_at_vertex = false;
+        }
+      if (!only_at_vertex) free[a] = free[b] = false;
+    }
+  return free;
+}
+
+// Points already placed, binned in squares of side `radius`, to refuse a new one nearer than
+// `radius` to any of them.
+class PointBins {
+ public:
+  explicit PointBins(double radius) : radius_(radius) {}
+  void add(const Point& p) { bins_[key(p.x(), p.y())].push_back(p); }
+  bool crowded(const Point& p) const {
+    const auto [i, j] = key(p.x(), p.y());
+    for (std::int64_t di = -1; di <= 1; ++di)
+      for (std::int64_t dj = -1; dj <= 1; ++dj) {
+        const auto bin = bins_.find({i + di, j + dj});
+        if (bin == bins_.end()) continue;
+        for (const Point& q : bin->second)
+          if (CGAL::squared_distance(p, q) < radius_ * radius_) return true;
+      }
+    return false;
+  }
+
+ private:
+  std::pair<std::int64_t, std::int64_t> key(double x, double y) const {
+    return {static_cast<std::int64_t>(std::floor(x / radius_)),
+            static_cast<std::int64_t>(std::floor(y / radius_))};
+  }
+  double radius_;
+  std::map<std::pair<std::int64_t, std::int64_t>, std::vector<Point>> bins_;
+};
+
+// The boundary layer (docs/theory.md §3.6): every free straight edge split into equal segments of
+// about kBoundaryLayerSpacing h, and rows of points parallel to it on either side inside the
+// shapes, row j at j s sqrt(3)/2 from the edge and staggered by s/2 from the row before, so that
+// the triangles along the edge are near-equilateral and alike from one segment to the next (as
+// the boundary layers of Gmsh). A row point is left out where it would fall nearer than
+// kBoundaryLayerClearance s to another point or to a shape edge (at corners, where the layers of
+// two edges meet); refinement fills those gaps. Returns the edges as polylines through their
+// points (the constraints) and the row points, which smoothing keeps.
+struct BoundaryLayer {
+  std::vector<std::vector<Point>> constraints;
+  std::vector<Point> rows;
+};
+BoundaryLayer boundary_layer(const GeometrySpec& geometry, double h) {
+  const std::vector<Segment> edges = shape_edges(geometry);
+  BoundaryLayer layer;
+  const double target = kBoundaryLayerSpacing * h;
+  PointBins placed(kBoundaryLayerClearance * target);
+  std::vector<double> spacing(edges.size(), 0.0);
+  std::vector<bool> free = free_edges(edges);
+  // An edge shorter than kBoundaryLayerShortest layer segments (the sides of a polygon drawn for
+  // a circle) is left to refinement: with such edges split beforehand it did not end on a 48-gon.
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    if (std::sqrt(CGAL::to_double(edges[e].squared_length())) < kBoundaryLayerShortest * target)
+      free[e] = false;
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const Point& a = edges[e].source();
+    const Point& b = edges[e].target();
+    const double length = std::sqrt(CGAL::to_double(edges[e].squared_length()));
+    const int count =
+        free[e] ? std::max(1, static_cast<int>(std::ceil(length / target - 1e-9))) : 1;
+    spacing[e] = length / count;
+    std::vector<Point> polyline{a};
+    // a + t (b - a) keeps a coordinate exactly where the edge is parallel to an axis (x = 0 of a
+    // mirror plane stays 0).
+    for (int k = 1; k < count; ++k) {
+      const double t = static_cast<double>(k) / count;
+      polyline.emplace_back(a.x() + t * (b.x() - a.x()), a.y() + t * (b.y() - a.y()));
+    }
+    polyline.push_back(b);
+    for (const Point& p : polyline)
+      if (!placed.crowded(p)) placed.add(p);
+    layer.constraints.push_back(std::move(polyline));
+  }
+  for (int row = 1; row <= kBoundaryLayerRows; ++row)
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      if (!free[e] || edges[e].is_degenerate()) continue;
+      const Point& a = edges[e].source();
+      const Point& b = edges[e].target();
+      const double s = spacing[e];
+      const double length = std::sqrt(CGAL::to_double(edges[e].squared_length()));
+      const int count = static_cast<int>(std::lround(length / s));
+      const double tx = (b.x() - a.x()) / length, ty = (b.y() - a.y()) / length;
+      const double offset = row * s * std::sqrt(3.0) / 2.0;
+      const double stagger = (row % 2 == 1) ? 0.5 : 0.0;
+      for (const double side : {1.0, -1.0})
+        for (int k = 0; k <= count; ++k) {
+          const double along = (k + stagger) * s;
+          if (along <= 0.0 || along >= length) continue;
+          const Point p(a.x() + along * tx - side * offset * ty,
+                        a.y() + along * ty + side * offset * tx);
+          if (covering_shape(geometry, 2, {p.x(), p.y(), 0.0}, 0.0) < 0 || placed.crowded(p))
+            continue;
+          bool clear = true;
+          for (const Segment& edge : edges)
+            if (CGAL::squared_distance(p, edge) <
+                std::pow(kBoundaryLayerClearance * s * std::sqrt(3.0) / 2.0, 2)) {
+              clear = false;
+              break;
+            }
+          if (!clear) continue;
+          placed.add(p);
+          layer.rows.push_back(p);
+        }
+    }
+  return layer;
+}
+
+// The shapes' edges as constraints with their boundary layer, the domain marked, and Delaunay
+// refinement to edges at most h and angles at least arcsin(sqrt(B)) but where an input angle is
+// smaller. Returns the layer's row vertices.
+std::vector<Vertex> mesh_shapes(Triangulation& triangulation, const GeometrySpec& geometry) {
+  const BoundaryLayer layer = boundary_layer(geometry, geometry.spacing);
+  for (const std::vector<Point>& polyline : layer.constraints)
+    for (std::size_t k = 0; k + 1 < polyline.size(); ++k)
+      triangulation.insert_constraint(polyline[k], polyline[k + 1]);
+  std::vector<Vertex> rows;
+  for (const Point& p : layer.rows)
+    rows.push_back(triangulation.insert(p));
   mark_domain(triangulation, geometry);
   CGAL::refine_Delaunay_mesh_2(triangulation, Criteria(kTriangleShapeBound, geometry.spacing),
                                true);
+  return rows;
 }
 
 double signed_area(const Point& a, const Point& b, const Point& c) {
@@ -138,7 +293,8 @@ TriangleShape shape_of(const Point& a, const Point& b, const Point& c) {
 }
 
 // Centroidal smoothing of a refined mesh (docs/theory.md §3.6): every free vertex (one on no
-// shape edge, all of whose triangles are in the domain) moves towards the centroid of the polygon
+// shape edge and not of the boundary layer's rows, `kept`, all of whose triangles are in the
+// domain) moves towards the centroid of the polygon
 // its triangles make, sweep after sweep, the others staying; the triangles are kept, only their
 // corners move. Refinement leaves vertices crowded beside the constraints, thin triangles whose
 // width sets the time step (§4.8), and node patches so lopsided that the nodal strain average is
@@ -149,7 +305,8 @@ TriangleShape shape_of(const Point& a, const Point& b, const Point& c) {
 // taken from CGAL's Lloyd optimiser, whose sums run in an order set by memory addresses, so that
 // two builds of one case differed in the last bits, and which lengthens edges past h: here every
 // sum runs in an order fixed by the positions alone, so a case meshes to the same bits every time.
-void smooth_free_vertices(Triangulation& triangulation, double h) {
+void smooth_free_vertices(Triangulation& triangulation, double h, const std::vector<Vertex>& kept) {
+  const std::set<Vertex> fixed(kept.begin(), kept.end());
   std::vector<Vertex> vertices;
   for (const Vertex vertex : triangulation.finite_vertex_handles())
     vertices.push_back(vertex);
@@ -165,7 +322,7 @@ void smooth_free_vertices(Triangulation& triangulation, double h) {
     index[vertices[i]] = i;
   std::vector<std::pair<Vertex, std::vector<std::array<Vertex, 2>>>> stars;
   for (const Vertex& vertex : vertices) {
-    if (triangulation.are_there_incident_constraints(vertex)) continue;
+    if (triangulation.are_there_incident_constraints(vertex) || fixed.count(vertex) != 0) continue;
     std::vector<std::array<Vertex, 2>> star;
     bool free = true;
     auto face = triangulation.incident_faces(vertex);
@@ -241,8 +398,8 @@ NodeSets build_triangle_node_sets(const GeometrySpec& geometry,
       throw InputError(shape.where, "geometry.cells", "triangles",
                        "triangle cells exist only in 2D", "lattice in 1D");
   try {
-    mesh_shapes(triangulation, geometry);
-    smooth_free_vertices(triangulation, h);
+    const std::vector<Vertex> layer = mesh_shapes(triangulation, geometry);
+    smooth_free_vertices(triangulation, h, layer);
   } catch (const CGAL::Failure_exception& failure) {
     // A CGAL precondition the reader's checks let through (e.g. coordinates so large that the
     // inexact constructions overflow): the shapes' fault, said as such rather than a crash.

@@ -1,7 +1,8 @@
 // Geometry to nodes on triangles (docs/theory.md §3.6): a constrained Delaunay triangulation of
-// the shapes, every shape edge a constraint, refined until every edge is at most the spacing and
-// every angle at least about 20.7°. The nodes are the triangles' corners, the stress points their
-// centroids. The lattice builder (node_sets.hpp, §3.1) fills the same NodeSets.
+// the shapes, every shape edge a constraint split evenly with a row of near-equilateral triangles
+// along it (the boundary layer), refined until every edge is at most the spacing and every angle
+// at least about 20.7°, then smoothed. The nodes are the triangles' corners, the stress points
+// their centroids. The lattice builder (node_sets.hpp, §3.1) fills the same NodeSets.
 #pragma once
 
 #include <string>
@@ -20,6 +21,15 @@ inline constexpr double kTriangleShapeBound = 0.125;
 /// Sweeps of centroidal smoothing after refinement (§3.6): each moves every free vertex to the
 /// centroid of the polygon its triangles make; measured in §3.6.
 inline constexpr int kSmoothingSweeps = 10;
+
+/// The boundary layer along straight shape edges (§3.6): the edges are split into equal segments
+/// of about kBoundaryLayerSpacing times the spacing, with kBoundaryLayerRows rows of points
+/// parallel to each edge (near-equilateral triangles), a row point left out nearer than
+/// kBoundaryLayerClearance of a segment to another point or edge.
+inline constexpr double kBoundaryLayerSpacing = 0.7;
+inline constexpr int kBoundaryLayerRows = 2;
+inline constexpr double kBoundaryLayerClearance = 0.75;
+inline constexpr double kBoundaryLayerShortest = 4.0;
 
 /// Meshes the shapes of a 2D `geometry` with triangles whose edges are at most geometry.spacing.
 /// Shapes may overlap or touch (the later shape's material wins, as on the lattice) and their
