@@ -43,10 +43,16 @@ double reduced_angle(double degrees, double factor) {
   return std::atan(std::tan(degrees * kDegree) / factor) / kDegree;
 }
 
-/// Records the largest speed and displacement over the SPH nodes, about 400 samples a run.
+/// Records the largest speed and displacement over the SPH nodes, about 400 samples a run, and
+/// ends the run once the largest displacement exceeds `limit` (it fails whatever follows).
 class MotionRecorder final : public Observer {
  public:
-  explicit MotionRecorder(ReductionRun& run) : run_(run) {}
+  MotionRecorder(ReductionRun& run, double limit) : run_(run), limit_(limit) {}
+  std::string stop_reason() const override {
+    return !run_.displacement.empty() && run_.displacement.back() > limit_
+               ? fmt::format("the largest displacement exceeds {:.4g} m", limit_)
+               : std::string();
+  }
   void on_start(const Simulation& simulation) override {
     every_ = std::max(1L, simulation.total_steps() / 400);
     steps_ = 0;
@@ -59,11 +65,11 @@ class MotionRecorder final : public Observer {
                  const std::string& message) override {
     (void)status;
     (void)message;
-    const State& state = simulation.state_before_stop() ? *simulation.state_before_stop()
-                                                        : simulation.state();
+    const State& state =
+        simulation.state_before_stop() ? *simulation.state_before_stop() : simulation.state();
     run_.end_time = state.time;
     run_.largest_displacement = largest_displacement(simulation, state);
-    run_.came_to_rest = simulation.stopped_early();
+    run_.came_to_rest = simulation.stopped_early() && run_.largest_displacement <= limit_;
   }
 
  private:
@@ -85,18 +91,21 @@ class MotionRecorder final : public Observer {
   }
 
   ReductionRun& run_;
+  double limit_;
   long every_ = 1, steps_ = 0;
 };
 
+/// `limit`: the displacement beyond which the run is failing (infinite for the elastic one).
 ReductionRun run_at(const CaseDescription& description, double factor,
-                    const StrengthReductionOptions& options, const std::filesystem::path& folder) {
+                    const StrengthReductionOptions& options, const std::filesystem::path& folder,
+                    double limit) {
   CaseDescription reduced =
       factor > 0.0 ? reduce_strength(description, factor) : elastic_reference(description);
   reduced.time.stop_when_at_rest = options.criterion.rest_fraction;
   ReductionRun run;
   run.factor = factor;
   run.directory = folder;
-  MotionRecorder recorder(run);
+  MotionRecorder recorder(run, limit);
   RunOptions run_options;
   run_options.quiet = true;
   run_options.existing_results = options.existing_results;
@@ -113,20 +122,17 @@ ReductionRun run_at(const CaseDescription& description, double factor,
 
 void classify(ReductionRun& run, double elastic_displacement, const FailureCriterion& criterion) {
   const double ratio = run.largest_displacement / elastic_displacement;
+  run.failing = true;
   if (run.diverged) {
-    run.failing = true;
     run.reason = fmt::format("diverged at t = {:.3g} s", run.end_time);
-  } else if (!run.came_to_rest) {
-    run.failing = true;
-    run.reason = fmt::format("still moving at t = {:.3g} s (largest speed {:.3g} m/s), u_max = "
-                             "{:.3g} m = {:.3g} u_el",
-                             run.end_time, run.speed.empty() ? 0.0 : run.speed.back(),
-                             run.largest_displacement, ratio);
   } else if (ratio > criterion.displacement_ratio) {
-    run.failing = true;
-    run.reason = fmt::format("at rest at t = {:.3g} s but u_max = {:.3g} m = {:.3g} u_el > {:g} u_el",
-                             run.end_time, run.largest_displacement, ratio,
-                             criterion.displacement_ratio);
+    run.reason =
+        fmt::format("u_max = {:.3g} m = {:.3g} u_el > {:g} u_el at t = {:.3g} s",
+                    run.largest_displacement, ratio, criterion.displacement_ratio, run.end_time);
+  } else if (!run.came_to_rest) {
+    run.reason = fmt::format(
+        "still moving at t = {:.3g} s (largest speed {:.3g} m/s), u_max = {:.3g} m = {:.3g} u_el",
+        run.end_time, run.speed.empty() ? 0.0 : run.speed.back(), run.largest_displacement, ratio);
   } else {
     run.failing = false;
     run.reason = fmt::format("at rest at t = {:.3g} s, u_max = {:.3g} m = {:.3g} u_el",
@@ -202,8 +208,8 @@ CaseDescription reduce_strength(const CaseDescription& description, double facto
   for (auto& [name, block] : reduced.materials) {
     const std::string model = model_of(block);
     if (is_frictional(model)) {
-      for (const char* key : {"cohesion", "minimum_cohesion", "cohesion_hardening_modulus",
-                              "tension_cutoff"})
+      for (const char* key :
+           {"cohesion", "minimum_cohesion", "cohesion_hardening_modulus", "tension_cutoff"})
         divide(block, key, factor);
       double friction = 0.0;
       if (auto found = block.values.find("friction_angle"); found != block.values.end()) {
@@ -268,7 +274,8 @@ StrengthReductionResult find_factor_of_safety(const CaseDescription& description
                      "out of range", "a number > 1");
   StrengthReductionResult result;
   try {
-    result.elastic = run_at(description, 0.0, options, directory / "elastic");
+    result.elastic = run_at(description, 0.0, options, directory / "elastic",
+                            std::numeric_limits<double>::infinity());
     if (!result.elastic.came_to_rest)
       throw RunError(fmt::format(
           "the elastic reference ({}) did not come to rest (largest speed {} of its peak) by "
@@ -277,8 +284,9 @@ StrengthReductionResult find_factor_of_safety(const CaseDescription& description
     if (options.on_run) options.on_run(result.elastic);
     const double elastic_displacement = result.elastic.largest_displacement;
     const auto run_and_keep = [&](double factor) {
-      ReductionRun run = run_at(description, factor, options,
-                                directory / fmt::format("F{:.4f}", factor));
+      ReductionRun run =
+          run_at(description, factor, options, directory / fmt::format("F{:.4f}", factor),
+                 criterion.displacement_ratio * elastic_displacement);
       classify(run, elastic_displacement, criterion);
       result.runs.push_back(std::move(run));
       if (options.on_run) options.on_run(result.runs.back());
@@ -286,15 +294,17 @@ StrengthReductionResult find_factor_of_safety(const CaseDescription& description
     };
     double stable = options.stable, failing = options.failing;
     if (run_and_keep(stable)) {
-      result.message = fmt::format("the case fails already at the bracket's low end F = {:g}; "
-                                   "choose a lower one",
-                                   stable);
+      result.message = fmt::format(
+          "the case fails already at the bracket's low end F = {:g}; "
+          "choose a lower one",
+          stable);
       return result;
     }
     if (!run_and_keep(failing)) {
-      result.message = fmt::format("the case is still stable at the bracket's high end F = {:g}; "
-                                   "choose a higher one",
-                                   failing);
+      result.message = fmt::format(
+          "the case is still stable at the bracket's high end F = {:g}; "
+          "choose a higher one",
+          failing);
       return result;
     }
     result.bracket_holds = true;
@@ -342,7 +352,7 @@ std::string strength_reduction_json(const CaseDescription& description,
       "  \"criterion\": {{\"rest_fraction\": {}, \"displacement_ratio\": {}, \"time_end\": {}}},\n"
       "  \"elastic_displacement\": {},\n  \"mechanism_picture\": {},\n  \"runs\": [{}\n  ]\n}}\n",
       json_text(description.name), json_text(description.file),
-      json_text(found                 ? "found"
+      json_text(found                ? "found"
                 : result.interrupted ? "interrupted"
                                      : "bracket_not_held"),
       json_text(result.message), json_number(result.factor),

@@ -47,9 +47,9 @@ struct FailureCriterion {
 struct ReductionRun {
   double factor = 0.0;
   bool failing = false;
-  bool came_to_rest = false;   ///< stopped by the rest test before time.end
-  bool diverged = false;       ///< the run diverged (counted as failing)
-  double end_time = 0.0;       ///< time reached [s]
+  bool came_to_rest = false;          ///< stopped by the rest test before time.end
+  bool diverged = false;              ///< the run diverged (counted as failing)
+  double end_time = 0.0;              ///< time reached [s]
   double largest_displacement = 0.0;  ///< max over the SPH nodes of |u| at the end [m]
   std::string reason;                 ///< why it was classified so, for people
   std::filesystem::path directory;
@@ -58,8 +58,8 @@ struct ReductionRun {
 };
 
 struct StrengthReductionOptions {
-  double stable = 1.0;    ///< lower end of the bracket: must be stable
-  double failing = 2.0;   ///< upper end: must fail
+  double stable = 1.0;      ///< lower end of the bracket: must be stable
+  double failing = 2.0;     ///< upper end: must fail
   double tolerance = 0.01;  ///< bisect until failing - stable <= tolerance
   FailureCriterion criterion;
   ExistingResults existing_results = ExistingResults::Refuse;
@@ -74,8 +74,8 @@ struct StrengthReductionResult {
   double stable = 0.0, failing = 0.0;  ///< the final bracket
   bool bracket_holds = false;
   bool interrupted = false;
-  std::string message;  ///< why there is no factor, when there is none
-  ReductionRun elastic;  ///< the elastic reference
+  std::string message;             ///< why there is no factor, when there is none
+  ReductionRun elastic;            ///< the elastic reference
   std::vector<ReductionRun> runs;  ///< in the order run
   /// The failing run with the smallest F (the mechanism picture), or null.
   const ReductionRun* first_failing() const;
