@@ -201,7 +201,7 @@ FrictionalCut read_frictional_cut(const CaseDescription& description) {
 }  // namespace
 
 std::vector<CheckResult> validate_vertical_cut_frictional(const ValidationContext& context) {
-  // Full: dx = 0.3 m, bracket [1.0, 1.5], tolerance 0.01, and a second cut (H = 4 m, gamma =
+  // Full: dx = 0.3 m, bracket [1.0, 1.8], tolerance 0.01, and a second cut (H = 4 m, gamma =
   // 20 kN/m^3, dx = 0.2 m) with the same criterion. Quick: dx = 0.4 m, [1.15, 1.35] halved twice.
   struct Variant {
     std::string label;
@@ -224,7 +224,7 @@ std::vector<CheckResult> validate_vertical_cut_frictional(const ValidationContex
     const FrictionalCut cut = read_frictional_cut(run.description);
     const double bound = cut.upper_bound_factor();
     run.options.stable = context.quick ? 1.15 : 1.0;
-    run.options.failing = context.quick ? 1.35 : 1.5;
+    run.options.failing = context.quick ? 1.35 : 1.8;
     run.options.tolerance = context.quick ? 0.05 : 0.01;
     const StrengthReductionResult result = run_fos(context, run);
     const double factor = factor_or_nan(result);
