@@ -27,7 +27,8 @@ geometry:
       material: base
 materials:
   soil:
-)" + material + R"(
+)" + material +
+         R"(
   base: {model: linear_elastic, density: 2000, young_modulus: 1.0e8, poisson_ratio: 0.3}
 boundary_conditions:
   - {group: ymin, fixed: true}
@@ -102,10 +103,10 @@ TEST(StrengthReduction, RefusesCasesWithoutAStrengthToReduce) {
   EXPECT_NE(elastic.find("fos.yaml"), std::string::npos) << elastic;
   EXPECT_NE(elastic.find("no material has a strength to reduce"), std::string::npos) << elastic;
   EXPECT_NE(elastic.find("perzyna_drucker_prager"), std::string::npos) << elastic;
-  const std::string cam_clay = error_of(slope_case(
-      "    {model: perzyna_modified_cam_clay, density: 2000, poisson_ratio: 0.3, "
-      "critical_state_ratio: 1.0, compression_index: 0.2, swelling_index: 0.04, "
-      "preconsolidation_pressure: 1.0e5, initial_void_ratio: 1.0, fluidity: 1.0}"));
+  const std::string cam_clay = error_of(
+      slope_case("    {model: perzyna_modified_cam_clay, density: 2000, poisson_ratio: 0.3, "
+                 "critical_state_ratio: 1.0, compression_index: 0.2, swelling_index: 0.04, "
+                 "preconsolidation_pressure: 1.0e5, initial_void_ratio: 1.0, fluidity: 1.0}"));
   EXPECT_NE(cam_clay.find("materials.soil.model"), std::string::npos) << cam_clay;
   EXPECT_NE(cam_clay.find("perzyna_modified_cam_clay"), std::string::npos) << cam_clay;
 }
