@@ -1,4 +1,4 @@
-// rktsph — command line: run, check, validate, plot.
+// rktsph — command line: run, check, validate, plot, fos.
 // Exit status: 0 success, 1 validation failed, 2 bad input (case file, arguments, an output
 // folder that cannot be created or holds results without --overwrite), 3 a run diverged, failed
 // or could not proceed (also: output folder in use by another run), 130/143 interrupted by
@@ -14,6 +14,7 @@
 #include <charconv>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 
 #include "check_line.hpp"
@@ -25,6 +26,7 @@
 #include "rktsph/driver/run_case.hpp"
 #include "rktsph/output/run_observers.hpp"
 #include "rktsph/simulation/simulation.hpp"
+#include "rktsph/strength_reduction/strength_reduction.hpp"
 #include "rktsph/validation/validation_case.hpp"
 
 namespace {
@@ -345,6 +347,84 @@ int command_plot(const std::string& run_directory, const std::string& field, int
   return status == 2 ? kExitInput : kExitRun;
 }
 
+struct FosArguments {
+  std::string case_path, output;
+  std::vector<std::string> sets;
+  std::vector<double> bracket = {1.0, 2.0};
+  double tolerance = 0.01;
+  FailureCriterion criterion;
+  bool overwrite = false, quiet = false;
+};
+
+// `rktsph fos`: the factor of safety by strength reduction (docs/theory.md §10). Exit status 0
+// with a factor, 1 when the bracket does not hold (no factor), 2 for bad input, 3 for a run that
+// could not be set up, 130/143 interrupted.
+int command_fos(const FosArguments& arguments) {
+  const CaseDescription description =
+      read_case_file(arguments.case_path, parse_overrides(arguments.sets));
+  check_strength_reduction_case(description);
+  const std::filesystem::path directory =
+      arguments.output.empty() ? std::filesystem::path("results") / (description.name + "-fos")
+                               : std::filesystem::path(arguments.output);
+  const std::filesystem::path summary = directory / "fos.json";
+  if (std::filesystem::exists(summary) && !arguments.overwrite)
+    throw InputError({}, "--output", directory.string(),
+                     "holds the results of an earlier strength reduction (fos.json)",
+                     "--overwrite, or another folder with -o");
+  StrengthReductionOptions options;
+  options.stable = arguments.bracket.at(0);
+  options.failing = arguments.bracket.at(1);
+  options.tolerance = arguments.tolerance;
+  options.criterion = arguments.criterion;
+  options.existing_results =
+      arguments.overwrite ? ExistingResults::Overwrite : ExistingResults::Refuse;
+  const InterruptHandler interrupts;
+  options.stop_check = &InterruptHandler::stop_reason;
+  options.on_run = [&](const ReductionRun& run) {
+    if (arguments.quiet) return;
+    if (run.factor == 0.0)
+      std::cout << fmt::format("elastic reference: at rest at t = {:.3g} s, u_el = {:.4g} m\n",
+                               run.end_time, run.largest_displacement);
+    else
+      std::cout << fmt::format("F = {:.4f}: {:<8} {}\n", run.factor,
+                               run.failing ? "failing" : "stable", run.reason);
+    std::cout.flush();
+  };
+  const StrengthReductionResult result = find_factor_of_safety(description, options, directory);
+  std::string picture;
+  if (const ReductionRun* failing = result.first_failing(); failing && !result.interrupted) {
+    picture = "mechanism.png";
+    const int status =
+        run_tool("plot_field.py", {failing->directory.string(), "--field", "eps_vp", "--magnify",
+                                   "1", "-o", (directory / picture).string()});
+    if (status != 0) {
+      std::cerr << "rktsph: the mechanism picture could not be drawn (see above); fos.json is "
+                   "written without it\n";
+      picture.clear();
+    }
+  }
+  {
+    std::ofstream out(summary);
+    out << strength_reduction_json(description, options, result, picture);
+    if (!out) throw RunError("cannot write " + summary.string());
+  }
+  if (result.interrupted) {
+    std::cerr << "rktsph: " << result.message << "\n";
+    return interrupted_exit_status();
+  }
+  if (!result.bracket_holds) {
+    std::cout << fmt::format("No factor of safety: {}. Runs: {}/ (fos.json)\n", result.message,
+                             directory.string());
+    return kExitValidationFailed;
+  }
+  std::cout << fmt::format(
+      "Factor of safety F = {:.4f}, bracket [{:.4f}, {:.4f}] (stable at {:.4f}, failing at "
+      "{:.4f}). Results: {}/ (fos.json{})\n",
+      result.factor, result.stable, result.failing, result.stable, result.failing,
+      directory.string(), picture.empty() ? "" : ", " + picture);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -434,6 +514,33 @@ int main(int argc, char** argv) {
                    "for every model (default 0: undeformed; 1: the current positions)");
   plot->add_option("-o,--output", output, "PNG file to write")->required();
 
+  FosArguments fos_arguments;
+  CLI::App* fos = app.add_subcommand(
+      "fos", "Factor of safety by strength reduction: bisect the F dividing c' and tan phi'");
+  fos->add_option("case", fos_arguments.case_path, "Case file (YAML)")->required();
+  fos->add_option("-o,--output", fos_arguments.output,
+                  "Output folder (default results/<case name>-fos)");
+  fos->add_option("--bracket", fos_arguments.bracket,
+                  "LOW HIGH: a stable and a failing strength factor (default 1 2)")
+      ->expected(2)
+      ->check(CLI::PositiveNumber);
+  fos->add_option("--tolerance", fos_arguments.tolerance,
+                  "Bisect until the bracket is this narrow (default 0.01)")
+      ->check(CLI::PositiveNumber);
+  fos->add_option("--rest-fraction", fos_arguments.criterion.rest_fraction,
+                  "At rest: the largest speed at most this fraction of its peak (default 1e-3)")
+      ->check(CLI::Range(0.0, 1.0));
+  fos->add_option("--displacement-ratio", fos_arguments.criterion.displacement_ratio,
+                  "Failing when the largest displacement exceeds this multiple of the elastic "
+                  "one (default 10)")
+      ->check(CLI::Range(1.0, 1e12));
+  fos->add_option("--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(integer_in_range(1, 1024));
+  fos->add_option("--set", fos_arguments.sets, "Override a case key (repeatable)");
+  fos->add_flag("--overwrite", fos_arguments.overwrite,
+                "Replace the results of an earlier strength reduction in the output folder");
+  fos->add_flag("-q,--quiet", fos_arguments.quiet, "Print only the result");
+
   if (explain_missing_command(app, argc)) return kExitInput;
   if (reject_unknown_command(app, argc, argv)) return kExitInput;
   try {
@@ -450,6 +557,10 @@ int main(int argc, char** argv) {
     if (*validate)
       return command_validate(names, all, quick, json, output, report, threads, jobs, sets,
                               cases_option);
+    if (*fos) {
+      if (threads > 0) omp_set_num_threads(threads);
+      return command_fos(fos_arguments);
+    }
     if (*plot)
       return command_plot(run_directory, field, component, plot_time, magnification, output);
   } catch (const InputError& error) {

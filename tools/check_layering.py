@@ -28,6 +28,7 @@ LAYERS = [
     "simulation",     # assembly and the loop
     "output",         # observers that write files
     "driver",         # a run from a case file
+    "strength_reduction",  # the factor of safety: strength-reduced runs and the bisection
     "validation",     # references and case checks (its own library)
 ]
 

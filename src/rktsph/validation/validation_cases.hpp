@@ -20,6 +20,8 @@ std::vector<CheckResult> validate_triangles_slope_viscoplastic(const ValidationC
 std::vector<CheckResult> validate_triangles_strip_footing_elastic(const ValidationContext& context);
 std::vector<CheckResult> validate_triangles_vpw_consolidation(const ValidationContext& context);
 std::vector<CheckResult> validate_slope_viscoplastic(const ValidationContext& context);
+std::vector<CheckResult> validate_slope_fos_homogeneous(const ValidationContext& context);
+std::vector<CheckResult> validate_vertical_cut_frictional(const ValidationContext& context);
 std::vector<CheckResult> validate_slope_softening(const ValidationContext& context);
 std::vector<CheckResult> validate_bar_wave_2d(const ValidationContext& context);
 std::vector<CheckResult> validate_triangles_bar_wave_2d(const ValidationContext& context);

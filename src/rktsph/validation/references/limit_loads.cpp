@@ -155,4 +155,26 @@ double strip_undrained_compressibility_factor(double young_modulus, double poiss
   return skempton * (1.0 + undrained_poisson) * 2.0 / 3.0;
 }
 
+double frictional_vertical_cut_stability_number(double friction_angle_deg) {
+  const double phi = friction_angle_deg * std::numbers::pi / 180.0;
+  return kTaylorVerticalCutStabilityNumber * std::tan(std::numbers::pi / 4.0 + phi / 2.0);
+}
+
+double vertical_cut_upper_bound_factor(double height, double unit_weight, double cohesion,
+                                       double friction_angle_deg) {
+  const double tan_phi = std::tan(friction_angle_deg * std::numbers::pi / 180.0);
+  // gamma H F / c grows with F and the bound falls with it: one root, bracketed by [1e-3, 1e3].
+  const auto excess = [&](double factor) {
+    const double reduced = std::atan(tan_phi / factor) * 180.0 / std::numbers::pi;
+    return unit_weight * height * factor / cohesion -
+           frictional_vertical_cut_stability_number(reduced);
+  };
+  double low = 1e-3, high = 1e3;
+  for (int k = 0; k < 200; ++k) {
+    const double middle = std::sqrt(low * high);
+    (excess(middle) < 0.0 ? low : high) = middle;
+  }
+  return std::sqrt(low * high);
+}
+
 }  // namespace rktsph::references

@@ -86,4 +86,25 @@ double strip_centre_line_pore_pressure(double load, double half_width, double z)
 double strip_undrained_compressibility_factor(double young_modulus, double poisson_ratio,
                                               double porosity, double fluid_bulk_modulus);
 
+// --- Factor of safety by strength reduction (docs/theory.md §10; issue 31) ----------------------
+
+/// Verruijt's homogeneous slope (H = 4.5 m at 1:2, gamma = 16 kN/m^3, c' = 5 kPa, phi' = 20 deg),
+/// Code_Aster validation test ssnp006 (V6.03.006, "Benchmark solution"): Bishop's simplified
+/// method as given by Verruijt, and the Plaxis 2D finite-element strength reduction.
+inline constexpr double kVerruijtSlopeBishopFactor = 1.534;
+inline constexpr double kVerruijtSlopeStrengthReductionFactor = 1.54;
+/// Griffiths and Lane (1999), Geotechnique 49(3), example 1 (H = 10 m, 2:1, c'/(gamma H) = 0.05,
+/// phi' = 20 deg, psi = 0): finite-element strength reduction 1.4 (Bishop and Morgenstern's
+/// charts 1.38).
+inline constexpr double kGriffithsLaneExample1Factor = 1.4;
+
+/// Upper bound of limit analysis for a vertical cut in c-phi soil with associated flow (Chen
+/// 1975, log-spiral toe mechanism, closely approximated as): gamma H / c = 3.83 tan(45 deg +
+/// phi/2).
+double frictional_vertical_cut_stability_number(double friction_angle_deg);
+/// The strength factor F at which a vertical cut of height H reaches that bound:
+/// gamma H F / c = 3.83 tan(45 deg + phi_F/2), phi_F = atan(tan phi / F) (bisection).
+double vertical_cut_upper_bound_factor(double height, double unit_weight, double cohesion,
+                                       double friction_angle_deg);
+
 }  // namespace rktsph::references
