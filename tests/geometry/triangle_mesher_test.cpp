@@ -172,7 +172,9 @@ TEST(TriangleMesher, NodesOnAStraightEdgeLieExactlyOnIt) {
   EXPECT_GE(on_top, static_cast<std::size_t>(std::ceil(4.1 / 0.3)) + 1);
 }
 
-// The boundary layer (docs/theory.md §3.6): each straight edge is split into equal segments of
+// The boundary layer (docs/theory.md §3.6): each straight edge along an axis (a slanted edge is
+// left to refinement: with the layer CGAL's refinement did not end on some) is split into equal
+// segments of
 // at most kBoundaryLayerSpacing h, and the triangles along it, away from the shape's corners, are
 // equilateral (the first row sits at s sqrt(3)/2, staggered by s/2), so that a node on the edge
 // sees its cells symmetrically. Their width s sqrt(3)/2 is far above the thin edge triangles of
@@ -204,6 +206,7 @@ TEST(TriangleMesher, StraightEdgesCarryALayerOfEquilateralTriangles) {
     for (std::size_t k = 0; k < v.size(); ++k) {
       const Vec3& a = v[k];
       const Vec3& b = v[(k + 1) % v.size()];
+      if (a[0] != b[0] && a[1] != b[1]) continue;  // slanted: no layer
       const double length = std::hypot(b[0] - a[0], b[1] - a[1]);
       std::vector<double> along;
       for (std::size_t i = 0; i < x.size(); ++i)
@@ -224,7 +227,15 @@ TEST(TriangleMesher, StraightEdgesCarryALayerOfEquilateralTriangles) {
       if (near_a_vertex(cx, cy)) continue;
       int on_outline = 0;
       for (int k = 0; k < 3; ++k)
-        on_outline += distance_to_outline(v, c.x[k], c.y[k]) < 1e-9 * h;
+        for (std::size_t e = 0; e < v.size(); ++e) {
+          const Vec3& a = v[e];
+          const Vec3& b = v[(e + 1) % v.size()];
+          if ((a[0] == b[0] || a[1] == b[1]) &&
+              distance_to_segment(c.x[k], c.y[k], a, b) < 1e-9 * h) {
+            ++on_outline;
+            break;
+          }
+        }
       if (on_outline < 2) continue;
       ++layer;
       EXPECT_NEAR(squared_smallest_sine(c), 0.75, 1e-9) << "cell " << p;
@@ -434,6 +445,23 @@ TEST(TriangleMesher, SharpInputAnglesAreMeshedNotRefused) {
                                                nodes.cells.corner_positions(nodes.sph_nodes, p)));
   EXPECT_GE(smallest, kMinimumCellQuality);
   EXPECT_NEAR(sum(nodes.stress_points.volume), 0.5 * 36.0 * std::sin(tip), 1e-10);
+}
+
+// Quadrilaterals with one slanted side, on which the mesher with a boundary layer on that side did
+// not end (§3.6): they are meshed, and their area is the polygon's. A hang here is a timeout.
+TEST(TriangleMesher, PolygonsWithSlantedSidesAreMeshed) {
+  const std::vector<std::array<double, 8>> quadrilaterals = {
+      {0, 0, 4.1, 0, 2.3, 2.7, 0, 2.2}, {0, 0, 4.1, 0, 3.3, 2.7, 0, 2.2}, {0, 0, 4, 0, 2, 3, 0, 2}};
+  for (const auto& q : quadrilaterals) {
+    const NodeSets nodes = build_triangle_node_sets(
+        triangles(0.5,
+                  {polygon({{q[0], q[1], 0}, {q[2], q[3], 0}, {q[4], q[5], 0}, {q[6], q[7], 0}},
+                           "soil")}),
+        {"soil"});
+    const double area = 0.5 * std::abs((q[0] * q[3] - q[2] * q[1]) + (q[2] * q[5] - q[4] * q[3]) +
+                                       (q[4] * q[7] - q[6] * q[5]) + (q[6] * q[1] - q[0] * q[7]));
+    EXPECT_NEAR(sum(nodes.stress_points.volume), area, 1e-10 * area) << q[4] << " " << q[5];
+  }
 }
 
 // A hand-made complex of two triangles over the square [0, 1]^2 of the shape at line 4.

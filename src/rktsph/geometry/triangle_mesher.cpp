@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -189,13 +190,21 @@ struct BoundaryLayer {
   std::vector<std::vector<Point>> constraints;
   std::vector<Point> rows;
 };
-BoundaryLayer boundary_layer(const GeometrySpec& geometry, double h) {
+BoundaryLayer boundary_layer(const GeometrySpec& geometry, double h, bool with_layer) {
   const std::vector<Segment> edges = shape_edges(geometry);
   BoundaryLayer layer;
   const double target = kBoundaryLayerSpacing * h;
   PointBins placed(kBoundaryLayerClearance * target);
   std::vector<double> spacing(edges.size(), 0.0);
   std::vector<bool> free = free_edges(edges);
+  if (!with_layer) free.assign(edges.size(), false);  // the shapes' edges as they are
+  // Only edges along an axis, whose split points and rows are exact in one coordinate: with the
+  // layer on a slanted edge CGAL's refinement did not end (a point location that never returned,
+  // on a quadrilateral with one slanted side; docs/theory.md §3.6).
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    if (edges[e].source().x() != edges[e].target().x() &&
+        edges[e].source().y() != edges[e].target().y())
+      free[e] = false;
   // An edge shorter than kBoundaryLayerShortest layer segments (the sides of a polygon drawn for
   // a circle) is left to refinement: with such edges split beforehand it did not end on a 48-gon.
   for (std::size_t e = 0; e < edges.size(); ++e)
@@ -254,11 +263,28 @@ BoundaryLayer boundary_layer(const GeometrySpec& geometry, double h) {
   return layer;
 }
 
-// The shapes' edges as constraints with their boundary layer, the domain marked, and Delaunay
-// refinement to edges at most h and angles at least arcsin(sqrt(B)) but where an input angle is
-// smaller. Returns the layer's row vertices.
-std::vector<Vertex> mesh_shapes(Triangulation& triangulation, const GeometrySpec& geometry) {
-  const BoundaryLayer layer = boundary_layer(geometry, geometry.spacing);
+// Delaunay refinement of the marked domain to edges at most h and angles at least
+// arcsin(sqrt(B)) but where an input angle is smaller, one insertion at a time; false if the
+// triangulation passes `vertex_limit` vertices first (refinement that does not end: the layer's
+// points beside a corner refinement must split ever finer, §3.6).
+bool refine_within(Triangulation& triangulation, double h, std::size_t vertex_limit) {
+  CGAL::Delaunay_mesher_2<Triangulation, Criteria> mesher(triangulation,
+                                                          Criteria(kTriangleShapeBound, h));
+  mesher.init(true);
+  while (!mesher.is_refinement_done()) {
+    if (triangulation.number_of_vertices() > vertex_limit) return false;
+    mesher.step_by_step_refine_mesh();
+  }
+  return true;
+}
+
+// The shapes' edges as constraints, with their boundary layer when `with_layer`, the domain
+// marked, and refinement. Returns the layer's row vertices, or nothing if the refinement with the
+// layer passed `vertex_limit` vertices (the caller then meshes again without it).
+std::optional<std::vector<Vertex>> mesh_shapes(Triangulation& triangulation,
+                                               const GeometrySpec& geometry, bool with_layer,
+                                               std::size_t vertex_limit) {
+  const BoundaryLayer layer = boundary_layer(geometry, geometry.spacing, with_layer);
   for (const std::vector<Point>& polyline : layer.constraints)
     for (std::size_t k = 0; k + 1 < polyline.size(); ++k)
       triangulation.insert_constraint(polyline[k], polyline[k + 1]);
@@ -266,9 +292,24 @@ std::vector<Vertex> mesh_shapes(Triangulation& triangulation, const GeometrySpec
   for (const Point& p : layer.rows)
     rows.push_back(triangulation.insert(p));
   mark_domain(triangulation, geometry);
-  CGAL::refine_Delaunay_mesh_2(triangulation, Criteria(kTriangleShapeBound, geometry.spacing),
-                               true);
+  if (!refine_within(triangulation, geometry.spacing, vertex_limit)) return std::nullopt;
   return rows;
+}
+
+// A bound of the vertices a refinement that ends makes: twenty times the equilateral triangles of
+// edge h over the shapes' bounding box (a mesh of the bundled cases has about one vertex per such
+// triangle), and no fewer than 2000. Past it the layer is dropped, not the case.
+std::size_t refinement_vertex_limit(const GeometrySpec& geometry) {
+  double x_min = std::numeric_limits<double>::infinity(), y_min = x_min;
+  double x_max = -x_min, y_max = -x_min;
+  for (const Segment& edge : shape_edges(geometry))
+    for (const Point& p : {edge.source(), edge.target()}) {
+      x_min = std::min(x_min, p.x()), x_max = std::max(x_max, p.x());
+      y_min = std::min(y_min, p.y()), y_max = std::max(y_max, p.y());
+    }
+  const double h = geometry.spacing;
+  const double triangles = (x_max - x_min) * (y_max - y_min) / (std::sqrt(3.0) / 4.0 * h * h);
+  return static_cast<std::size_t>(std::max(2000.0, 20.0 * triangles));
 }
 
 double signed_area(const Point& a, const Point& b, const Point& c) {
@@ -398,8 +439,15 @@ NodeSets build_triangle_node_sets(const GeometrySpec& geometry,
       throw InputError(shape.where, "geometry.cells", "triangles",
                        "triangle cells exist only in 2D", "lattice in 1D");
   try {
-    const std::vector<Vertex> layer = mesh_shapes(triangulation, geometry);
-    smooth_free_vertices(triangulation, h, layer);
+    // The boundary layer beside some corners leaves refinement no end (§3.6): there the shapes
+    // are meshed again without it, as refinement alone always ends.
+    const std::size_t limit = refinement_vertex_limit(geometry);
+    std::optional<std::vector<Vertex>> layer = mesh_shapes(triangulation, geometry, true, limit);
+    if (!layer) {
+      triangulation.clear();
+      layer = mesh_shapes(triangulation, geometry, false, std::numeric_limits<std::size_t>::max());
+    }
+    smooth_free_vertices(triangulation, h, *layer);
   } catch (const CGAL::Failure_exception& failure) {
     // A CGAL precondition the reader's checks let through (e.g. coordinates so large that the
     // inexact constructions overflow): the shapes' fault, said as such rather than a crash.

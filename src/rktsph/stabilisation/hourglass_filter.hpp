@@ -1,6 +1,6 @@
 // The hourglass filter (docs/theory.md §3.3, eq. 3.1) as a zero-energy control of the step: after
-// the conditions of t + dt, every filtered nodal field f becomes f - kappa (r - Pi r), r = f - Pi f,
-// Pi the first-order round trip through the stress points (symbol 1 - kappa (1 - a^2)^2), which
+// the conditions of t + dt, every filtered nodal field f becomes f - kappa (r - Pi r), r = f - Pi
+// f, Pi the first-order round trip through the stress points (symbol 1 - kappa (1 - a^2)^2), which
 // removes the checkerboard and passes fields linear in x. In the saturated model it acts on the
 // total normal stress and leaves p_w alone (§6.5).
 #pragma once
@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "rktsph/core/step_choices.hpp"
-#include "rktsph/stabilisation/zero_energy_control.hpp"
 #include "rktsph/sph/operators.hpp"
+#include "rktsph/stabilisation/zero_energy_control.hpp"
 
 namespace rktsph {
 
@@ -21,7 +21,8 @@ class HourglassFilter final : public ZeroEnergyControl {
   /// them in place. `fields` says which fields are filtered (every
   /// field, or those that do not only feed the momentum balance), `kappa` its strength.
   HourglassFilter(const PhysicsModel& model, const WeightTable& to_points,
-                  const WeightTable& to_nodes, HourglassFields fields, double kappa, std::size_t stress_points, std::size_t nodes);
+                  const WeightTable& to_nodes, HourglassFields fields, double kappa,
+                  std::size_t stress_points, std::size_t nodes);
 
   HourglassFields fields() const { return fields_; }
 

@@ -1,7 +1,7 @@
 #include "rktsph/stabilisation/hourglass_stiffness_control.hpp"
 
-#include "rktsph/physics/physics_model.hpp"
 #include "rktsph/physics/kinematics/objective_rate.hpp"
+#include "rktsph/physics/physics_model.hpp"
 
 namespace rktsph {
 

@@ -28,15 +28,13 @@ StrainStiffnessControl::StrainStiffnessControl(
 
 void StrainStiffnessControl::follow_flow(const CellComplex& cells,
                                          std::span<const std::uint8_t> flowing,
-                                         double plastic_fraction,
-                                         std::span<std::uint8_t> scratch) {
+                                         double plastic_fraction, std::span<std::uint8_t> scratch) {
   if (!factor_.empty())
     flow_strength_factors(cells, near_flow_, flowing, plastic_fraction, scratch, factor_);
 }
 
-void StrainStiffnessControl::correct_half_step(const State& state,
-                                               const FieldArray& point_gradient, double dt,
-                                               FieldArray& half_step) {
+void StrainStiffnessControl::correct_half_step(const State& state, const FieldArray& point_gradient,
+                                               double dt, FieldArray& half_step) {
   stiffness_.add_stress(model_, to_points_, nodes_.cells.materials(), state.displacement,
                         state.strain, point_gradient, dt, state.fields, factor_, half_step);
 }

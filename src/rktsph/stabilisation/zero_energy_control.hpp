@@ -13,7 +13,8 @@
 //   add_node_rate          step 2, the nodes' rates: forces on the nodes (the cells'
 //                          Flanagan-Belytschko stiffness, eq. 3.4);
 //   record_strain_rate     step 2 or the mean-velocity update: the nodal velocity gradient the
-//                          nodal stress is advanced with (the strain that stress received, eq. 3.5);
+//                          nodal stress is advanced with (the strain that stress received,
+//                          eq. 3.5);
 //   filter                 step 3, after the conditions of t + dt: a correction of the nodal fields
 //                          (the hourglass filter, eq. 3.1), after which the step imposes the
 //                          conditions again;

@@ -20,14 +20,12 @@ ZeroEnergyControls make_zero_energy_controls(const PhysicsModel& model, const No
     // at the first build, so that a rebuild never switches the filtered fields.
     const HourglassFields fields = options.hourglass_fields.value_or(
         operators.compact_stencils ? HourglassFields::Velocity : HourglassFields::All);
-    controls.push_back(std::make_unique<HourglassFilter>(model, operators.filter_to_points,
-                                                         operators.filter_to_nodes, fields,
-                                                         options.hourglass_kappa,
-                                                         reference.stress_points.size(),
-                                                         reference.sph_nodes.size()));
+    controls.push_back(std::make_unique<HourglassFilter>(
+        model, operators.filter_to_points, operators.filter_to_nodes, fields,
+        options.hourglass_kappa, reference.stress_points.size(), reference.sph_nodes.size()));
   }
-  auto cells = std::make_unique<HourglassStiffnessControl>(model, reference,
-                                                           options.hourglass_stiffness, policy.motion() != nullptr);
+  auto cells = std::make_unique<HourglassStiffnessControl>(
+      model, reference, options.hourglass_stiffness, policy.motion() != nullptr);
   if (cells->active()) controls.push_back(std::move(cells));
   // On the first tables: it keeps the imposed stresses of t = 0 as its reference (eq. 3.8).
   auto strain = std::make_unique<StrainStiffnessControl>(
