@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "rktsph/core/error.hpp"
+#include "rktsph/output/json_writer.hpp"
 #include "rktsph/simulation/quantities.hpp"
 
 namespace rktsph {
@@ -138,23 +139,6 @@ void classify(ReductionRun& run, double elastic_displacement, const FailureCrite
     run.reason = fmt::format("at rest at t = {:.3g} s, u_max = {:.3g} m = {:.3g} u_el",
                              run.end_time, run.largest_displacement, ratio);
   }
-}
-
-std::string json_number(double value) {
-  return std::isfinite(value) ? fmt::format("{:.10g}", value) : "null";
-}
-
-std::string json_text(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\')
-      out += std::string("\\") + c;
-    else if (static_cast<unsigned char>(c) < 0x20)
-      out += fmt::format("\\u{:04x}", static_cast<int>(c));
-    else
-      out += c;
-  }
-  return out + "\"";
 }
 
 }  // namespace
@@ -335,11 +319,11 @@ std::string strength_reduction_json(const CaseDescription& description,
         "{{\"factor\": {}, \"outcome\": {}, \"at_rest\": {}, \"diverged\": {}, \"end_time\": {}, "
         "\"largest_displacement\": {}, \"displacement_over_elastic\": {}, \"reason\": {}, "
         "\"directory\": {}}}",
-        json_number(run.factor), json_text(run.failing ? "failing" : "stable"),
+        json_number(run.factor), json_quote(run.failing ? "failing" : "stable"),
         run.came_to_rest ? "true" : "false", run.diverged ? "true" : "false",
         json_number(run.end_time), json_number(run.largest_displacement),
         json_number(run.largest_displacement / result.elastic.largest_displacement),
-        json_text(run.reason), json_text(run.directory.string()));
+        json_quote(run.reason), json_quote(run.directory.string()));
   };
   std::string runs;
   for (const ReductionRun& run : result.runs)
@@ -351,18 +335,18 @@ std::string strength_reduction_json(const CaseDescription& description,
       "  \"initial_bracket\": [{}, {}],\n"
       "  \"criterion\": {{\"rest_fraction\": {}, \"displacement_ratio\": {}, \"time_end\": {}}},\n"
       "  \"elastic_displacement\": {},\n  \"mechanism_picture\": {},\n  \"runs\": [{}\n  ]\n}}\n",
-      json_text(description.name), json_text(description.file),
-      json_text(found                ? "found"
-                : result.interrupted ? "interrupted"
-                                     : "bracket_not_held"),
-      json_text(result.message), json_number(result.factor),
+      json_quote(description.name), json_quote(description.file),
+      json_quote(found                ? "found"
+                 : result.interrupted ? "interrupted"
+                                      : "bracket_not_held"),
+      json_quote(result.message), json_number(result.factor),
       json_number(found ? result.stable : std::nan("")),
       json_number(found ? result.failing : std::nan("")), json_number(options.tolerance),
       json_number(options.stable), json_number(options.failing),
       json_number(options.criterion.rest_fraction),
       json_number(options.criterion.displacement_ratio), json_number(description.time.end),
       json_number(result.elastic.largest_displacement),
-      mechanism_picture.empty() ? "null" : json_text(mechanism_picture), runs);
+      mechanism_picture.empty() ? "null" : json_quote(mechanism_picture), runs);
 }
 
 }  // namespace rktsph
