@@ -4,7 +4,7 @@
 
 #include "../../app/check_line.hpp"
 
-namespace rktsph {
+namespace rktsph::check_line_test {
 namespace {
 
 CheckResult check(const std::string& comparison, double bound, const std::string& unit) {
@@ -32,4 +32,4 @@ TEST(CheckLine, AQuantityKeepsItsUnit) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::check_line_test

@@ -11,6 +11,7 @@
 
 #include "../support/shell.hpp"
 
+namespace cli_limits_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -102,3 +103,4 @@ TEST(CommandLineLimits, LastOutputIsAtTimeEnd) {
 }
 
 }  // namespace
+}  // namespace cli_limits_test

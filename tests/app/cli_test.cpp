@@ -21,6 +21,7 @@
 #include "../support/shell.hpp"
 #include "../support/small_bar.hpp"
 
+namespace cli_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -662,3 +663,4 @@ TEST(CommandLine, ValidateRejectsUnknownCaseNames) {
 }
 
 }  // namespace
+}  // namespace cli_test

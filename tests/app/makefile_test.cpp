@@ -8,6 +8,7 @@
 
 #include "../support/shell.hpp"
 
+namespace makefile_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -36,3 +37,4 @@ TEST(Makefile, MakeTestInstallsWhatTheReportTestsNeed) {
 }
 
 }  // namespace
+}  // namespace makefile_test

@@ -16,6 +16,7 @@
 
 #include "../support/shell.hpp"
 
+namespace report_tools_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -213,3 +214,4 @@ TEST_F(ReportTools, CheckReportPassesALoadedPageAndCatchesAMissingImage) {
 }
 
 }  // namespace
+}  // namespace report_tools_test

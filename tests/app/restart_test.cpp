@@ -19,6 +19,7 @@
 #include "../support/shell.hpp"
 #include "rktsph/core/checkpoint.hpp"
 
+namespace restart_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -315,3 +316,4 @@ TEST_F(RestartRefusal, NewRunRemovesTheCheckpointOfTheOldOne) {
 }
 
 }  // namespace
+}  // namespace restart_test

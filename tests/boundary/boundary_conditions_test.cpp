@@ -11,7 +11,7 @@
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::boundary_conditions_test {
 namespace {
 
 const char* kBlock = R"(
@@ -181,4 +181,4 @@ TEST(BoundaryConditions, EqualImposedVelocitiesMayOverlap) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::boundary_conditions_test

@@ -20,7 +20,7 @@
 
 #include "rktsph/sph/kernel.hpp"
 
-namespace rktsph {
+namespace rktsph::free_surface_detection_test {
 namespace {
 
 using Vector = std::array<double, 3>;
@@ -648,4 +648,4 @@ TEST(FreeSurfaceDetection, RejectsWhatItCannotDo) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::free_surface_detection_test

@@ -8,7 +8,7 @@
 
 #include "../support/lattices.hpp"
 
-namespace rktsph {
+namespace rktsph::perimeter_normals_test {
 namespace {
 
 TEST(PerimeterNormals, FollowAnAffineMapOfTheBodyExactly) {
@@ -67,4 +67,4 @@ TEST(PerimeterNormals, ABentFaceTakesTheChordOfItsNeighbours) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::perimeter_normals_test

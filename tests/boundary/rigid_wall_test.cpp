@@ -12,7 +12,7 @@
 #include "rktsph/core/error.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::rigid_wall_test {
 namespace {
 
 std::string block(const std::string& wall) {
@@ -98,4 +98,4 @@ TEST(RigidWall, AZeroNormalIsRefusedAtItsLine) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::rigid_wall_test

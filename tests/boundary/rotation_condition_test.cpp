@@ -16,7 +16,7 @@
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::rotation_condition_test {
 namespace {
 
 /// A 3 m x 2 m block whose left part, a box reaching into the body (so that the rigid-body check
@@ -138,4 +138,4 @@ TEST(RotationCondition, ZeroRateBuiltInCodeIsRefused) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::rotation_condition_test

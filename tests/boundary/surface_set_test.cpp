@@ -13,7 +13,7 @@
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::surface_set_test {
 namespace {
 
 TEST(SurfaceSet, LatticeFacesAreTheMissingNeighbours) {
@@ -201,4 +201,4 @@ TEST(SurfaceSet, ConditionsOnATiltedSurfaceMakeItTractionFree) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::surface_set_test

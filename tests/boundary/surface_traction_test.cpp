@@ -8,7 +8,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace rktsph {
+namespace rktsph::surface_traction_test {
 namespace {
 
 StressTensor plane_stress_state() {
@@ -131,4 +131,4 @@ TEST(SurfaceTraction, OnlyCoordinateAxesTakeThePerAxisPath) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::surface_traction_test

@@ -17,7 +17,7 @@
 
 #include "rktsph/case/computed_defaults.hpp"
 
-namespace rktsph {
+namespace rktsph::case_reader_test {
 namespace {
 
 constexpr const char* kFile = "case.yaml";
@@ -1140,4 +1140,4 @@ TEST(CaseReader, WaterTablePolylineMustRiseInXAndHaveTwoVertices) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::case_reader_test

@@ -12,7 +12,7 @@
 #include "rktsph/simulation/simulation.hpp"
 #include "rktsph/sph/cell_laplacian.hpp"
 
-namespace rktsph {
+namespace rktsph::computed_defaults_test {
 namespace {
 
 /// A small saturated block (12 x 6 cells in 2D, 12 cells in 1D) with drained top and rollers.
@@ -122,4 +122,4 @@ TEST(ComputedDefaults, UnsetHourglassFieldsFollowTheStencilWidth) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::computed_defaults_test

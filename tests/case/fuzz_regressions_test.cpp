@@ -15,7 +15,7 @@
 #include "rktsph/core/error.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::fuzz_regressions_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -53,4 +53,4 @@ TEST(FuzzRegressions, EveryReproducerIsRefusedWithAnInputErrorNamingTheFile) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::fuzz_regressions_test

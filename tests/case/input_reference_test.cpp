@@ -13,7 +13,7 @@
 
 #include "rktsph/case/key_spec.hpp"
 
-namespace rktsph {
+namespace rktsph::input_reference_test {
 namespace {
 
 const std::string kKeyTableHeader = "| key | type | unit | default | allowed | meaning |";
@@ -150,4 +150,4 @@ TEST(InputReference, CheckFailsForAMissingKeyADifferentDefaultAndAnUndeclaredKey
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::input_reference_test

@@ -10,7 +10,7 @@
 #include "../support/elastic_block.hpp"
 #include "rktsph/case/case_reader.hpp"
 
-namespace rktsph {
+namespace rktsph::motion_input_test {
 namespace {
 
 constexpr const char* kFile = "case.yaml";
@@ -213,4 +213,4 @@ TEST(CaseReaderBendingMode, OneDimensionalCaseIsRefused) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::motion_input_test

@@ -9,7 +9,7 @@
 
 #include "rktsph/case/case_reader.hpp"
 
-namespace rktsph {
+namespace rktsph::plausibility_test {
 namespace {
 
 // A 10 m column of ordinary soil: 20 MPa, 2000 kg/m^3, 30 degrees, 50 kPa.
@@ -159,4 +159,4 @@ TEST(Plausibility, AWaterTableBelowTheBodyAndAnImplausibleDensityAboveAreFlagged
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::plausibility_test

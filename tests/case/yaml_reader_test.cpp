@@ -6,7 +6,7 @@
 
 #include <string>
 
-namespace rktsph {
+namespace rktsph::yaml_reader_test {
 namespace {
 
 const std::string kText =
@@ -278,4 +278,4 @@ TEST(YamlOverride, NestedAliasesInASetValueAreRefused) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::yaml_reader_test

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace rktsph {
+namespace rktsph::time_function_test {
 namespace {
 
 constexpr double kRoundOff = 1e-14;
@@ -97,4 +97,4 @@ TEST(TimeFunction, HarmonicPhaseShiftsTheWave) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::time_function_test

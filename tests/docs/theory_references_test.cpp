@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+namespace theory_references_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -222,3 +223,4 @@ TEST(TheoryReferencesSlow, NothingCitesADocumentOutsideTheRepository) {
 }
 
 }  // namespace
+}  // namespace theory_references_test

@@ -18,7 +18,7 @@
 #include "rktsph/core/error.hpp"
 #include "rktsph/driver/run_case.hpp"
 
-namespace rktsph {
+namespace rktsph::run_case_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -197,4 +197,4 @@ TEST_F(RunCaseTest, TheSummaryAndTheLogNameTheCommitAndTheBuild) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::run_case_test

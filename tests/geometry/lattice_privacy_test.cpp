@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace rktsph {
+namespace rktsph::lattice_privacy_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -39,4 +39,4 @@ TEST(LatticePrivacy, NoFileOutsideTheLatticeBuilderReadsALatticeIndex) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::lattice_privacy_test

@@ -10,7 +10,7 @@
 #include "../support/lattices.hpp"
 #include "../support/shapes.hpp"
 
-namespace rktsph {
+namespace rktsph::node_sets_test {
 namespace {
 
 using test::rectangle;
@@ -211,4 +211,4 @@ TEST(NodeGroups, PointFartherThanHalfASpacingFromEveryNodeIsRefused) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::node_sets_test

@@ -15,7 +15,7 @@
 #include "rktsph/mesh/cell_kinds/triangle.hpp"
 #include "rktsph/mesh/node_classification.hpp"
 
-namespace rktsph {
+namespace rktsph::triangle_mesher_test {
 namespace {
 
 using test::polygon;
@@ -517,4 +517,4 @@ TEST(TriangleMesher, DegenerateInvertedOrSliverCellsAreRefusedAtTheirShape) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::triangle_mesher_test

@@ -16,7 +16,7 @@
 #include "rktsph/linear_algebra/smoothed_aggregation.hpp"
 #include "rktsph/linear_algebra/sparse_rows.hpp"
 
-namespace rktsph {
+namespace rktsph::multigrid_test {
 namespace {
 
 // The 5-point Laplacian on an m x m grid of interior points (Dirichlet values eliminated), scaled
@@ -253,4 +253,4 @@ TEST(SmoothedAggregation, IterationsDoNotGrowWithTheGridAndTheAnswerIsTheDirectO
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::multigrid_test

@@ -16,7 +16,7 @@
 #include "rktsph/materials/point_driver.hpp"
 #include "rktsph/validation/references/critical_state.hpp"
 
-namespace rktsph {
+namespace rktsph::cam_clay_pressure_dependent_test {
 namespace {
 
 constexpr double kFrictionAngle = 25.0;  // [deg]
@@ -163,4 +163,4 @@ TEST(CamClayPressureDependentSlow, DrainedTriaxialCompressionReachesCriticalStat
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::cam_clay_pressure_dependent_test

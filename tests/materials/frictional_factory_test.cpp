@@ -18,7 +18,7 @@
 #include "rktsph/materials/perzyna_drucker_prager.hpp"
 #include "rktsph/materials/perzyna_mohr_coulomb.hpp"
 
-namespace rktsph {
+namespace rktsph::frictional_factory_test {
 namespace {
 
 SourceLocation at_line(int line) {
@@ -203,4 +203,4 @@ TEST(FrictionalFactory, CaseReaderKeepsTheMatchingWord) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::frictional_factory_test

@@ -11,7 +11,7 @@
 
 #include "stress_states.hpp"
 
-namespace rktsph {
+namespace rktsph::invariants_test {
 namespace {
 
 using test_support::distance;
@@ -154,4 +154,4 @@ TEST(Invariants, ElasticStiffnessMatchesEngineeringForm) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::invariants_test

@@ -16,7 +16,7 @@
 #include "rktsph/materials/perzyna_modified_cam_clay.hpp"
 #include "rktsph/materials/perzyna_von_mises.hpp"
 
-namespace rktsph {
+namespace rktsph::overstress_integrator_test {
 namespace {
 
 constexpr double kYoung = 1.0e7, kPoisson = 0.3;
@@ -334,4 +334,4 @@ TEST(OverstressIntegrator, StressDependentElasticityFollowsTheSwellingLine) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::overstress_integrator_test

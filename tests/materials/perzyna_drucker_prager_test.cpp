@@ -15,7 +15,7 @@
 #include "rktsph/materials/point_driver.hpp"
 #include "stress_states.hpp"
 
-namespace rktsph {
+namespace rktsph::perzyna_drucker_prager_test {
 namespace {
 
 using test_support::principal_from_invariants;
@@ -362,4 +362,4 @@ TEST(PerzynaDruckerPrager, NoFlowInsideTheConeAndBelowTheCutOff) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::perzyna_drucker_prager_test

@@ -12,7 +12,7 @@
 #include "rktsph/materials/perzyna_modified_cam_clay.hpp"
 #include "rktsph/materials/perzyna_von_mises.hpp"
 
-namespace rktsph {
+namespace rktsph::perzyna_factory_test {
 namespace {
 
 SourceLocation at_line(int line) {
@@ -251,4 +251,4 @@ TEST(PerzynaFactory, AMisspeltKeyGetsASuggestion) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::perzyna_factory_test

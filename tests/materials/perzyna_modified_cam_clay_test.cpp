@@ -16,7 +16,7 @@
 #include "rktsph/materials/point_driver.hpp"
 #include "stress_states.hpp"
 
-namespace rktsph {
+namespace rktsph::perzyna_modified_cam_clay_test {
 namespace {
 
 using test_support::distance;
@@ -367,4 +367,4 @@ TEST(PerzynaModifiedCamClay, SourceStiffnessMatchesLinearisedRelaxationRate) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::perzyna_modified_cam_clay_test

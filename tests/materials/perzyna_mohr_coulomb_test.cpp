@@ -17,7 +17,7 @@
 #include "rktsph/materials/point_driver.hpp"
 #include "stress_states.hpp"
 
-namespace rktsph {
+namespace rktsph::perzyna_mohr_coulomb_test {
 namespace {
 
 using test_support::distance;
@@ -319,4 +319,4 @@ TEST(PerzynaMohrCoulomb, NoFlowInsideTheHexagon) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::perzyna_mohr_coulomb_test

@@ -13,7 +13,7 @@
 #include "rktsph/materials/point_driver.hpp"
 #include "stress_states.hpp"
 
-namespace rktsph {
+namespace rktsph::perzyna_von_mises_test {
 namespace {
 
 using test_support::distance;
@@ -265,4 +265,4 @@ TEST(PerzynaVonMises, NoFlowInsideYieldSurface) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::perzyna_von_mises_test

@@ -11,7 +11,7 @@
 #include "rktsph/materials/linear_elastic.hpp"
 #include "rktsph/materials/perzyna_von_mises.hpp"
 
-namespace rktsph {
+namespace rktsph::point_driver_test {
 namespace {
 
 ElasticConstants elasticity() {
@@ -126,4 +126,4 @@ TEST(PointDriver, RejectsBadOptions) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::point_driver_test

@@ -11,7 +11,7 @@
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/mesh/cell_geometry.hpp"
 
-namespace rktsph {
+namespace rktsph::cell_complex_test {
 namespace {
 
 CellCorners corners_of(std::initializer_list<std::array<double, 2>> points) {
@@ -144,4 +144,4 @@ TEST(CellComplex, LatticeBodyIsQuadrilateralsCounterClockwise) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::cell_complex_test

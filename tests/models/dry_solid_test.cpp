@@ -12,7 +12,7 @@
 #include "rktsph/models/dry_solid.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::dry_solid_test {
 namespace {
 
 std::string column_case(const std::string& coupling) {
@@ -156,4 +156,4 @@ TEST(DrySolid, TensionCutOffReturnsTheMeanStressAndKeepsTheDeviator) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::dry_solid_test

@@ -7,7 +7,7 @@
 #include "rktsph/models/model_registry.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::model_registry_test {
 namespace {
 
 TEST(ModelRegistry, EveryModelNameHasOneEntryInTheSameOrder) {
@@ -28,4 +28,4 @@ TEST(ModelRegistry, TheAssemblyTakesTheModelAndItsProjectionFromTheRegistry) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::model_registry_test

@@ -16,7 +16,7 @@
 #include "rktsph/core/error.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::saturated_test {
 namespace {
 
 // A column of width `width` (0.5 m: 3 node columns) and height `height`, smooth (mirror) sides
@@ -527,4 +527,4 @@ TEST(SaturatedColumn, StabilisationLeavesTheUndrainedColumnUnchanged) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::saturated_test

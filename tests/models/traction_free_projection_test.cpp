@@ -10,7 +10,7 @@
 #include "rktsph/models/dry_solid.hpp"
 #include "rktsph/models/saturated_vpw.hpp"
 
-namespace rktsph {
+namespace rktsph::traction_free_projection_test {
 namespace {
 
 const ElasticConstants kElastic{2.0e7, 0.3};
@@ -190,4 +190,4 @@ TEST(SaturatedVpwProjection, ActsOnTheEffectiveStressOnly) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::traction_free_projection_test

@@ -13,7 +13,7 @@
 #include "rktsph/simulation/quantities.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::water_table_test {
 namespace {
 
 constexpr double kDensity = 2000.0, kWater = 1000.0, kPorosity = 0.4, kGravity = 9.81;
@@ -192,4 +192,4 @@ TEST(WaterTable, NeedsDownwardGravity) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::water_table_test

@@ -15,7 +15,7 @@
 #include "rktsph/core/error.hpp"
 #include "rktsph/output/atomic_file.hpp"
 
-namespace rktsph {
+namespace rktsph::atomic_file_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -213,4 +213,4 @@ TEST_F(AtomicFileTest, RefusedWriteInALargeFileNamesTheSystemReasonAndKeepsTheOl
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::atomic_file_test

@@ -7,7 +7,7 @@
 
 #include "rktsph/output/base64.hpp"
 
-namespace rktsph {
+namespace rktsph::base64_test {
 namespace {
 
 std::string encode_text(const std::string& text) {
@@ -59,4 +59,4 @@ TEST(Base64, LittleEndianWordsAndLongInputCrossTheInternalBuffer) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::base64_test

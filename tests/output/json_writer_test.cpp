@@ -16,7 +16,7 @@
 
 #include "rktsph/output/json_writer.hpp"
 
-namespace rktsph {
+namespace rktsph::json_writer_test {
 namespace {
 
 std::uint64_t bits(double value) {
@@ -170,4 +170,4 @@ sys.exit(0 if ok else 1)
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::json_writer_test

@@ -15,7 +15,7 @@
 #include "rktsph/output/atomic_file.hpp"
 #include "rktsph/output/output_folder.hpp"
 
-namespace rktsph {
+namespace rktsph::output_folder_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -154,4 +154,4 @@ TEST_F(OutputFolderTest, AFolderThatCannotBeCreatedIsBadInputNamingTheSystemReas
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::output_folder_test

@@ -15,7 +15,7 @@
 
 #include "rktsph/output/probe_csv.hpp"
 
-namespace rktsph {
+namespace rktsph::probe_csv_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -99,4 +99,4 @@ TEST(ProbeCsv, RejectsBadColumnsAndRows) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::probe_csv_test

@@ -8,7 +8,7 @@
 
 #include "rktsph/output/progress.hpp"
 
-namespace rktsph {
+namespace rktsph::progress_test {
 namespace {
 
 using std::chrono::milliseconds;
@@ -116,4 +116,4 @@ TEST(Progress, TerminalModeRedrawsOneLineAndEndsIt) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::progress_test

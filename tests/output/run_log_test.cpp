@@ -12,7 +12,7 @@
 #include "rktsph/core/error.hpp"
 #include "rktsph/output/run_log.hpp"
 
-namespace rktsph {
+namespace rktsph::run_log_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -119,4 +119,4 @@ TEST_F(RunLogTest, MissingDirectoryThrowsRunError) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::run_log_test

@@ -24,7 +24,7 @@
 #include "rktsph/output/pvd_writer.hpp"
 #include "rktsph/output/vtu_writer.hpp"
 
-namespace rktsph {
+namespace rktsph::vtu_writer_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -380,4 +380,4 @@ TEST_F(VtuWriterTest, ReaderRejectsATruncatedArray) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::vtu_writer_test

@@ -10,7 +10,7 @@
 #include "../support/lattices.hpp"
 #include "rktsph/physics/kinematics/objective_rate.hpp"
 
-namespace rktsph {
+namespace rktsph::configuration_motion_test {
 namespace {
 
 // Displacement of every node of `nodes` under the map x = F (X - c) + c + t.
@@ -123,4 +123,4 @@ TEST(ObjectiveRate, HughesWingetRotationIsOrthogonalAndSecondOrder) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::configuration_motion_test

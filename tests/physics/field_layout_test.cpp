@@ -3,7 +3,7 @@
 
 #include "rktsph/physics/field_layout.hpp"
 
-namespace rktsph {
+namespace rktsph::field_layout_test {
 namespace {
 
 TEST(FieldLayout, PlaneStrainWithPorePressure) {
@@ -36,4 +36,4 @@ TEST(FieldLayout, DryBarAndPlaneStress) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::field_layout_test

@@ -6,7 +6,7 @@
 
 #include "rktsph/physics/kinematics/kinematics.hpp"
 
-namespace rktsph {
+namespace rktsph::kinematics_test {
 namespace {
 
 const ElasticConstants kElastic{2.0e7, 0.3};
@@ -124,4 +124,4 @@ TEST(KinematicAssumption, StrainRatesComeFromTheInPlaneVelocityGradient) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::kinematics_test

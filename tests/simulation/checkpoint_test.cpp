@@ -15,7 +15,7 @@
 #include "rktsph/core/error.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::checkpoint_test {
 namespace {
 
 std::uint64_t bits_of(double value) {
@@ -210,4 +210,4 @@ TEST(CheckpointSimulation, RestoredLargeDeformationRunSearchesItsStencilsWhereTh
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::checkpoint_test

@@ -15,7 +15,7 @@
 #include "rktsph/simulation/energy_budget.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::energy_budget_test {
 namespace {
 
 /// A 10 m linear-elastic bar (rho = 2000, E = 1e8: c = 223.6 m/s, Z = rho c) of spacing `dx`,
@@ -145,4 +145,4 @@ TEST(EnergyBudget, CheckpointKeepsTheTotals) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::energy_budget_test

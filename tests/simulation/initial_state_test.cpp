@@ -14,7 +14,7 @@
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::initial_state_test {
 namespace {
 
 /// A free 4 m x 2 m block (no boundary conditions, so that nothing overwrites the initial
@@ -162,4 +162,4 @@ TEST(InitialState, InitialMotionBuiltInCodeForABarIsRefused) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::initial_state_test

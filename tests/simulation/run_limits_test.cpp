@@ -13,6 +13,7 @@
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
+namespace run_limits_test {
 namespace {
 
 using namespace rktsph;
@@ -153,3 +154,4 @@ TEST(RunEnd, EndsAtTimeEndWhenItIsAMultipleOfTheStep) {
 }
 
 }  // namespace
+}  // namespace run_limits_test

@@ -8,7 +8,7 @@
 #include "rktsph/simulation/simulation.hpp"
 #include "rktsph/simulation/stop_when_at_rest.hpp"
 
-namespace rktsph {
+namespace rktsph::stop_when_at_rest_test {
 namespace {
 
 CaseDescription settling_block(double damping, double end) {
@@ -67,4 +67,4 @@ TEST(StopWhenAtRest, NeverEndsAnUndampedRun) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::stop_when_at_rest_test

@@ -9,7 +9,7 @@
 #include "rktsph/simulation/simulation.hpp"
 #include "rktsph/simulation/surface_watch.hpp"
 
-namespace rktsph {
+namespace rktsph::surface_watch_test {
 namespace {
 
 // A 6 m x 4 m block at dx = 0.5 m (13 x 9 nodes), fixed at its base, a roller on its left face.
@@ -40,4 +40,4 @@ TEST(SurfaceWatch, OutlineIsEveryNodeMissingALatticeNeighbourWhateverItsConditio
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::surface_watch_test

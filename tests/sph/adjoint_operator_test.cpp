@@ -16,7 +16,7 @@
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::adjoint_operator_test {
 namespace {
 
 OperatorOptions options_for(double h, std::vector<MirrorPlane> mirrors) {
@@ -177,9 +177,9 @@ TEST(AdjointOperator, UniformStressUnderItsTractionIsAFixedPointOfTheStep) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::adjoint_operator_test
 
-namespace rktsph {
+namespace rktsph::adjoint_operator_test {
 namespace {
 
 // Issue 30: a node no stress point reaches stopped a run with "node 1079 is in no forward row"; the
@@ -208,4 +208,4 @@ TEST(AdjointOperatorTest, ANodeNoStressPointReachesIsNamedWithItsPositionAndAdvi
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::adjoint_operator_test

@@ -17,7 +17,7 @@
 #include "../support/shapes.hpp"
 #include "rktsph/geometry/triangle_mesher.hpp"
 
-namespace rktsph {
+namespace rktsph::cell_laplacian_test {
 namespace {
 
 using test::polygon;
@@ -260,4 +260,4 @@ TEST(CellNodeGradient, IsExactForLinearFieldsAtEveryNodeAndSeesOnlyItsPatch) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::cell_laplacian_test

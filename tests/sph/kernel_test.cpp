@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace rktsph {
+namespace rktsph::kernel_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -281,4 +281,4 @@ TEST(Kernel, RejectsUnsupportedDimension) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::kernel_test

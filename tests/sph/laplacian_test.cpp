@@ -13,7 +13,7 @@
 #include "../support/lattices.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 
-namespace rktsph {
+namespace rktsph::laplacian_test {
 namespace {
 
 using test::bar_lattice;
@@ -229,9 +229,9 @@ TEST(Laplacian, MirrorPlanesHalveVolumesAndKeepTheMatrixSymmetric) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::laplacian_test
 
-namespace rktsph {
+namespace rktsph::laplacian_test {
 namespace {
 
 TEST(Laplacian, CheckerboardRateIsTheEigenvalueOnTheLattice) {
@@ -264,4 +264,4 @@ TEST(Laplacian, CheckerboardRateIsTheEigenvalueOnTheLattice) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::laplacian_test

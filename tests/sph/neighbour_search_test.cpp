@@ -14,7 +14,7 @@
 
 #include "rktsph/core/point_cloud.hpp"
 
-namespace rktsph {
+namespace rktsph::neighbour_search_test {
 namespace {
 
 /// Uniform random points in the box [lower, upper]^dimension, unit volumes.
@@ -351,4 +351,4 @@ TEST(NeighbourSearch, RejectsInconsistentArguments) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::neighbour_search_test

@@ -14,7 +14,7 @@
 #include "../support/lattices.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 
-namespace rktsph {
+namespace rktsph::operators_test {
 namespace {
 
 using test::bar_lattice;
@@ -564,4 +564,4 @@ TEST(TableBuild, TablesDoNotDependOnThreadCountOrOnTheWorkspacesEarlierBuilds) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::operators_test

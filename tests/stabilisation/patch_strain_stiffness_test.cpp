@@ -30,7 +30,7 @@
 #include "rktsph/stabilisation/strain_stiffness_control.hpp"
 #include "rktsph/validation/rest_checks.hpp"
 
-namespace rktsph {
+namespace rktsph::patch_strain_stiffness_test {
 namespace {
 
 const Parity kStrainParity[] = {tensor_parity(0, 0), tensor_parity(1, 1), tensor_parity(0, 1)};
@@ -330,4 +330,4 @@ TEST(PatchStrainStiffness, IsTheOnlyDefaultControlOnTriangles) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::patch_strain_stiffness_test

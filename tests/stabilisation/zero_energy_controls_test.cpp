@@ -31,7 +31,7 @@
 #include "rktsph/stabilisation/hourglass_stiffness.hpp"
 #include "rktsph/stabilisation/hourglass_stiffness_control.hpp"
 
-namespace rktsph {
+namespace rktsph::zero_energy_controls_test {
 namespace {
 
 // The cells' Flanagan-Belytschko stiffness of the step; throws (failing the test) where none acts.
@@ -424,4 +424,4 @@ TEST(ZeroEnergyControls, TheStepCallsExactlyTheControlsTheCaseAsksFor) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::zero_energy_controls_test

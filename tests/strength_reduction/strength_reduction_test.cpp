@@ -11,7 +11,7 @@
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/core/error.hpp"
 
-namespace rktsph {
+namespace rktsph::strength_reduction_test {
 namespace {
 
 std::string slope_case(const std::string& material) {
@@ -118,4 +118,4 @@ TEST(StrengthReduction, RefusesABadFactor) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::strength_reduction_test

@@ -13,6 +13,7 @@
 #include "rktsph/core/error.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
+namespace courant_limit_test {
 namespace {
 
 using namespace rktsph;
@@ -100,3 +101,4 @@ TEST(CourantLimit, TimeStepIsRefusedWithTheCourantNumberItImplies) {
 }
 
 }  // namespace
+}  // namespace courant_limit_test

@@ -17,7 +17,7 @@
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::operator_rebuild_test {
 namespace {
 
 // The cut of reentrant_corner_test.cpp under a ramped strip load, with gravity and a mirror
@@ -348,4 +348,4 @@ TEST(StepTimeSplit, OnlyAMovingConfigurationRebuildsAndTheSplitFitsInTheSteps) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::operator_rebuild_test

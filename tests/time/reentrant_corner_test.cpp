@@ -14,7 +14,7 @@
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::reentrant_corner_test {
 namespace {
 
 using test::spectral_radius;
@@ -62,4 +62,4 @@ TEST(ReentrantCorner, ToeIsNotABoundaryNodeButItsFaceNeighboursAre) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::reentrant_corner_test

@@ -22,7 +22,7 @@
 #include "rktsph/simulation/simulation.hpp"
 #include "rktsph/stabilisation/hourglass_filter.hpp"
 
-namespace rktsph {
+namespace rktsph::rk_taylor_step_test {
 namespace {
 
 using test::spectral_radius;
@@ -328,4 +328,4 @@ TEST(RkTaylorStep, FilterRemovesTheVelocityCheckerboardAndKeepsTheStressWhenAske
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::rk_taylor_step_test

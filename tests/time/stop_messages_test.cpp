@@ -11,7 +11,7 @@
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::stop_messages_test {
 namespace {
 
 // A 4 m x 2 m elastic block on a 1 m lattice (c_p = 268 m/s) whose top-left corner node is driven
@@ -62,4 +62,4 @@ TEST(StopMessages, ANodeLeftBehindByItsCellsIsPlacedAndExplained) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::stop_messages_test

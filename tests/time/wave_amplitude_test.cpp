@@ -23,7 +23,7 @@
 #include "rktsph/case/case_reader.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
-namespace rktsph {
+namespace rktsph::wave_amplitude_test {
 namespace {
 
 constexpr double kDensity = 2000.0, kYoung = 1.5e8, kPoisson = 0.25, kPiston = 0.3;
@@ -219,4 +219,4 @@ TEST(WaveAmplitudeSlow, PlateauWithoutViscosityApproachesTheImpedanceTimesThePis
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::wave_amplitude_test

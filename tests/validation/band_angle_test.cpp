@@ -14,7 +14,7 @@
 
 #include "rktsph/core/error.hpp"
 
-namespace rktsph {
+namespace rktsph::band_angle_test {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
@@ -176,4 +176,4 @@ TEST(BandAngle, RejectsInconsistentInput) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::band_angle_test

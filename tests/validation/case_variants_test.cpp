@@ -16,7 +16,7 @@
 #include "rktsph/validation/validation_case.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_variants_test {
 namespace {
 
 ValidationContext quick_context(std::vector<CaseOverride> overrides = {}) {
@@ -211,4 +211,4 @@ TEST(CaseVariantSlow, StripFootingElasticWiderStripUnderTwiceTheLoad) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::case_variants_test

@@ -8,7 +8,7 @@
 
 #include "rktsph/validation/references/critical_state.hpp"
 
-namespace rktsph::references {
+namespace rktsph::references::critical_state_test {
 namespace {
 
 TEST(CriticalStateReference, CompressionRatioOfThirtyDegreesIsOnePointTwo) {
@@ -48,4 +48,4 @@ TEST(CriticalStateReference, DrainedTriaxialPathMeetsTheCriticalStateLine) {
 }
 
 }  // namespace
-}  // namespace rktsph::references
+}  // namespace rktsph::references::critical_state_test

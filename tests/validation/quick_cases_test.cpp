@@ -10,7 +10,7 @@
 
 #include "rktsph/validation/validation_case.hpp"
 
-namespace rktsph {
+namespace rktsph::quick_cases_test {
 namespace {
 
 class QuickValidationSlow : public testing::TestWithParam<std::string> {};
@@ -169,4 +169,4 @@ INSTANTIATE_TEST_SUITE_P(Bundled, QuickValidationSlow, testing::ValuesIn(case_na
                          });
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::quick_cases_test

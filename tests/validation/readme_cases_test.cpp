@@ -12,7 +12,7 @@
 
 #include "rktsph/validation/validation_case.hpp"
 
-namespace rktsph {
+namespace rktsph::readme_cases_test {
 namespace {
 
 const std::filesystem::path kSource = RKTSPH_SOURCE_DIR;
@@ -54,4 +54,4 @@ TEST(ReadmeCases, EveryCaseFolderHasAReadme) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::readme_cases_test

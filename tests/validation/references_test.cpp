@@ -36,7 +36,7 @@
 #include "rktsph/validation/references/terzaghi.hpp"
 #include "rktsph/validation/references/viscoplastic_bar.hpp"
 
-namespace rktsph::references {
+namespace rktsph::references::references_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -1385,4 +1385,4 @@ TEST(RunoutBoundTest, RitterFrontMovesAtTwiceTheShallowWaterSpeed) {
 }
 
 }  // namespace
-}  // namespace rktsph::references
+}  // namespace rktsph::references::references_test

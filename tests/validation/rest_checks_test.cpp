@@ -7,7 +7,7 @@
 
 #include "rktsph/validation/rest_checks.hpp"
 
-namespace rktsph {
+namespace rktsph::rest_checks_test {
 namespace {
 
 TEST(OddEvenResidualTest, ZeroOnALinearSequence) {
@@ -141,4 +141,4 @@ TEST(ResidualVelocityRatioTest, EndOverPeakAfterTheStart) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::rest_checks_test

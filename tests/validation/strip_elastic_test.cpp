@@ -14,7 +14,7 @@
 
 #include "rktsph/validation/references/strip_elastic.hpp"
 
-namespace rktsph::references {
+namespace rktsph::references::strip_elastic_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -150,4 +150,4 @@ TEST(SmoothLayerStripTest, DifferentialSettlementTendsToTheHalfPlane) {
 }
 
 }  // namespace
-}  // namespace rktsph::references
+}  // namespace rktsph::references::strip_elastic_test

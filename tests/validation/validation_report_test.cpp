@@ -13,7 +13,7 @@
 
 #include "rktsph/validation/validation_case.hpp"
 
-namespace rktsph {
+namespace rktsph::validation_report_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -319,4 +319,4 @@ TEST(ValidationJsonLine, KeepsTheContractFieldsOnly) {
 }
 
 }  // namespace
-}  // namespace rktsph
+}  // namespace rktsph::validation_report_test

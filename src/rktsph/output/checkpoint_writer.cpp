@@ -3,17 +3,9 @@
 #include <limits>
 
 #include "rktsph/output/atomic_file.hpp"
+#include "rktsph/output/output_times.hpp"
 
 namespace rktsph {
-
-namespace {
-
-// The tolerance of the output times (run_observers.cpp): within a millionth of a step.
-bool reached(double time, double target, double dt) {
-  return time >= target - 1e-6 * dt;
-}
-
-}  // namespace
 
 CheckpointWriter::CheckpointWriter(std::filesystem::path path, double interval,
                                    std::uint64_t case_hash, std::vector<CheckpointPart> parts)
@@ -31,8 +23,8 @@ void CheckpointWriter::after_step(const Simulation& simulation) {
   if (interval_ <= 0.0) return;
   const double time = simulation.state().time;
   const double dt = simulation.time_step();
-  if (!reached(time, next_time_, dt)) return;
-  while (reached(time, next_time_, dt))
+  if (!output_time_reached(time, next_time_, dt)) return;
+  while (output_time_reached(time, next_time_, dt))
     next_time_ += interval_;
   // Encoded after next_time_ moves on, so a restarted run does not write this checkpoint again.
   write_file_atomically(path_, encode_checkpoint(case_hash_, parts()));

@@ -12,16 +12,12 @@
 #include "rktsph/core/build_info.hpp"
 #include "rktsph/output/atomic_file.hpp"
 #include "rktsph/output/json_writer.hpp"
+#include "rktsph/output/output_times.hpp"
 #include "rktsph/output/vtu_writer.hpp"
 
 namespace rktsph {
 
 namespace {
-
-// A time counts as reached when within a millionth of a step of it (round-off of t += dt).
-bool reached(double time, double target, double dt) {
-  return time >= target - 1e-6 * dt;
-}
 
 // The fields of summary.json that say which program wrote it; shared by every kind of summary.
 void set_program(JsonValue& summary) {
@@ -171,8 +167,8 @@ OutputSchedule::OutputSchedule(double interval)
       next_time_(interval > 0.0 ? interval : std::numeric_limits<double>::infinity()) {}
 
 bool OutputSchedule::due(double time, double time_step) {
-  if (!reached(time, next_time_, time_step)) return false;
-  while (reached(time, next_time_, time_step))
+  if (!output_time_reached(time, next_time_, time_step)) return false;
+  while (output_time_reached(time, next_time_, time_step))
     next_time_ += interval_;
   return true;
 }

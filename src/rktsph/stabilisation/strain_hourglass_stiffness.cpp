@@ -9,8 +9,9 @@
 namespace rktsph {
 
 namespace {
-constexpr int kXX = 0, kYY = 1, kXY = 2;
-}
+// The order of the 2D strain components held per point.
+constexpr int kStrainXX = 0, kStrainYY = 1, kStrainXY = 2;
+}  // namespace
 
 StrainHourglassStiffness::StrainHourglassStiffness(
     const PhysicsModel& model, const WeightTable& to_points, std::span<const double> point_volume,
@@ -78,27 +79,27 @@ void StrainHourglassStiffness::apply_face_rule(const ConstrainedNode& rule,
   // linear part, in the pairing tau : r = tau_xx r_xx + tau_yy r_yy + 2 tau_xy r_xy.
   const auto n = static_cast<std::size_t>(rule.node);
   const double modulus = rule.moduli[0], lambda = rule.moduli[1], shear = rule.moduli[2];
-  double* xx = node_strain_.field(kXX);
-  double* yy = node_strain_.field(kYY);
-  double* xy = node_strain_.field(kXY);
+  double* xx = node_strain_.field(kStrainXX);
+  double* yy = node_strain_.field(kStrainYY);
+  double* xy = node_strain_.field(kStrainXY);
   auto increment = [&](int k) {
     return (*fields)(stress_field_[static_cast<std::size_t>(k)], n) -
            rule.reference[static_cast<std::size_t>(k)];
   };
   double* normal[2] = {xx, yy};
-  const bool fix_xx = rule.imposed[kXX], fix_yy = rule.imposed[kYY];
-  if (rule.imposed[kXY]) xy[n] = transpose ? 0.0 : increment(kXY) / (2.0 * shear);
+  const bool fix_xx = rule.imposed[kStrainXX], fix_yy = rule.imposed[kStrainYY];
+  if (rule.imposed[kStrainXY]) xy[n] = transpose ? 0.0 : increment(kStrainXY) / (2.0 * shear);
   if (fix_xx && fix_yy) {
     if (transpose) {
       xx[n] = yy[n] = 0.0;
     } else {
       const double det = modulus * modulus - lambda * lambda;
-      const double sxx = increment(kXX), syy = increment(kYY);
+      const double sxx = increment(kStrainXX), syy = increment(kStrainYY);
       xx[n] = (modulus * sxx - lambda * syy) / det;
       yy[n] = (modulus * syy - lambda * sxx) / det;
     }
   } else if (fix_xx || fix_yy) {
-    const int a = fix_xx ? kXX : kYY;  // the imposed normal component
+    const int a = fix_xx ? kStrainXX : kStrainYY;  // the imposed normal component
     double* imposed = normal[a];
     double* free = normal[1 - a];
     if (transpose) {
@@ -137,9 +138,9 @@ void StrainHourglassStiffness::symmetric_part(const FieldArray& gradient,
   // slot: the xx, xy, yx, yy entries of the gradient.
   const std::size_t points = strain_.point_count();
   for (std::size_t i = 0; i < points; ++i) {
-    strain_(kXX, i) = gradient(slot[0], i);
-    strain_(kYY, i) = gradient(slot[3], i);
-    strain_(kXY, i) = 0.5 * (gradient(slot[1], i) + gradient(slot[2], i));
+    strain_(kStrainXX, i) = gradient(slot[0], i);
+    strain_(kStrainYY, i) = gradient(slot[3], i);
+    strain_(kStrainXY, i) = 0.5 * (gradient(slot[1], i) + gradient(slot[2], i));
   }
 }
 
@@ -155,10 +156,10 @@ void StrainHourglassStiffness::elastic_stress_of_strain(const PhysicsModel& mode
   const int vx = model.velocity_field(0), vy = model.velocity_field(1);
   const std::size_t points = strain_.point_count();
   for (std::size_t i = 0; i < points; ++i) {
-    model_gradient_(vx * 2 + 0, i) = epsilon_ * strain_(kXX, i);
-    model_gradient_(vy * 2 + 1, i) = epsilon_ * strain_(kYY, i);
-    model_gradient_(vx * 2 + 1, i) = epsilon_ * strain_(kXY, i);
-    model_gradient_(vy * 2 + 0, i) = epsilon_ * strain_(kXY, i);
+    model_gradient_(vx * 2 + 0, i) = epsilon_ * strain_(kStrainXX, i);
+    model_gradient_(vy * 2 + 1, i) = epsilon_ * strain_(kStrainYY, i);
+    model_gradient_(vx * 2 + 1, i) = epsilon_ * strain_(kStrainXY, i);
+    model_gradient_(vy * 2 + 0, i) = epsilon_ * strain_(kStrainXY, i);
   }
   model.flux_rate(material, model_gradient_, rate_);
   for (int k = 0; k < 3; ++k)
@@ -233,9 +234,9 @@ void StrainHourglassStiffness::integrate_strain(const PhysicsModel& model,
   const int vx = model.velocity_field(0), vy = model.velocity_field(1);
   const std::size_t nodes = strain.point_count();
   for (std::size_t i = 0; i < nodes; ++i) {
-    strain(kXX, i) += dt * node_gradient(vx * 2, i);
-    strain(kYY, i) += dt * node_gradient(vy * 2 + 1, i);
-    strain(kXY, i) += 0.5 * dt * (node_gradient(vx * 2 + 1, i) + node_gradient(vy * 2, i));
+    strain(kStrainXX, i) += dt * node_gradient(vx * 2, i);
+    strain(kStrainYY, i) += dt * node_gradient(vy * 2 + 1, i);
+    strain(kStrainXY, i) += 0.5 * dt * (node_gradient(vx * 2 + 1, i) + node_gradient(vy * 2, i));
   }
 }
 

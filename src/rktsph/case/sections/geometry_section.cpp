@@ -72,7 +72,8 @@ void emit_rectangle(YAML::Emitter& out, const ShapeSpec& shape,
   out << YAML::EndMap;
 }
 
-void emit_polygon(YAML::Emitter& out, const ShapeSpec& shape, const CaseDescription& description) {
+void emit_shape_polygon(YAML::Emitter& out, const ShapeSpec& shape,
+                        const CaseDescription& description) {
   if (shape.kind != ShapeSpec::Kind::Polygon) return;
   out << YAML::Key << "polygon" << YAML::Value << YAML::Flow << YAML::BeginSeq;
   for (const Vec3& vertex : shape.vertices)
@@ -93,7 +94,7 @@ const KeyTable<ShapeSpec>& shape_keys() {
                                      "2D only; 3 to 10 000 vertices, non-zero area, simple",
                                      "Vertices in order, either sense; the outline is closed "
                                      "automatically.",
-                                     read_polygon_outline, emit_polygon),
+                                     read_polygon_outline, emit_shape_polygon),
               "m"),
       section_key<ShapeSpec>(
           "material", "word", "required", "a key of materials", "The material of the shape.",

@@ -34,7 +34,8 @@ void emit_box(YAML::Emitter& out, const GroupSpec& group, const CaseDescription&
   out << YAML::EndMap;
 }
 
-void emit_polygon(YAML::Emitter& out, const GroupSpec& group, const CaseDescription& description) {
+void emit_group_polygon(YAML::Emitter& out, const GroupSpec& group,
+                        const CaseDescription& description) {
   if (group.kind != GroupSpec::Kind::Polygon) return;
   out << YAML::Key << "polygon" << YAML::Value << YAML::BeginSeq;
   for (const Vec3& vertex : group.vertices)
@@ -72,7 +73,7 @@ const KeyTable<GroupSpec>& group_keys() {
                     group.kind = GroupSpec::Kind::Polygon;
                     group.vertices = read_polygon(node, reading.so_far.dimension);
                   },
-                  emit_polygon),
+                  emit_group_polygon),
               "m"),
       in_unit(
           section_key<GroupSpec>(

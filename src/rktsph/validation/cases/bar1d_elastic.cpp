@@ -9,7 +9,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::bar1d_elastic {
 
 namespace {
 
@@ -125,4 +125,4 @@ std::vector<CheckResult> validate_bar1d_elastic(const ValidationContext& context
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::bar1d_elastic

@@ -25,7 +25,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::bar1d_viscoplastic {
 
 namespace {
 
@@ -359,4 +359,4 @@ std::vector<CheckResult> validate_bar1d_viscoplastic(const ValidationContext& co
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::bar1d_viscoplastic

@@ -10,7 +10,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::bar_wave_2d {
 
 namespace {
 
@@ -126,7 +126,8 @@ void report_bar_wave(ValidationReport& report, const std::string& folder,
 }
 
 /// The relative L2 error of the smooth plane wave on triangles against dx, with slope 2.
-void add_convergence_figure(ValidationReport& report, const PlaneWaveConvergence& refined) {
+void add_convergence_figure(ValidationReport& report,
+                            const convergence::PlaneWaveConvergence& refined) {
   Figure errors{"error_vs_dx",
                 "Smooth plane wave on triangles: relative L2 error of sigma_xx at 0.9 L/c_p",
                 "dx (longest edge) [m]",
@@ -183,8 +184,8 @@ std::vector<CheckResult> validate_triangles_bar_wave_2d(const ValidationContext&
                                       context.report ? 0.25 * kTransit : 0.0, spacing);
   const std::vector<int> cells =
       context.quick ? std::vector<int>{40, 80, 160} : std::vector<int>{40, 80, 160, 320};
-  const PlaneWaveConvergence refined =
-      plane_wave_convergence(context, cells, {{"geometry.cells", "triangles"}});
+  const convergence::PlaneWaveConvergence refined =
+      convergence::plane_wave_convergence(context, cells, {{"geometry.cells", "triangles"}});
   if (context.report) {
     context.report->describe(
         "BAR-WAVE-2D on a triangle mesh: the plane P-wave of bar-wave-2d-s (L = 1 m, c_p = "
@@ -200,8 +201,8 @@ std::vector<CheckResult> validate_triangles_bar_wave_2d(const ValidationContext&
       check_at_most("arrival_error_dx", std::abs(with.arrival_dx), 0.0, 1.0, "dx/c_p"),
       check_at_most("sigma_xx_plateau_error", with.plateau, 0.0, 0.01, "fraction"),
       check_at_most("max_vy_ratio", with.max_vy, 0.0, 1e-3, "fraction"),
-      convergence_order_check("convergence_order_wave2d", refined.order),
+      convergence::convergence_order_check("convergence_order_wave2d", refined.order),
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::bar_wave_2d

@@ -28,7 +28,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::convergence {
 
 namespace {
 
@@ -269,4 +269,4 @@ std::vector<CheckResult> validate_convergence(const ValidationContext& context) 
           order_check("convergence_order_wave2d", wave_order)};
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::convergence

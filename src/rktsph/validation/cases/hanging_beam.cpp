@@ -21,7 +21,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::hanging_beam {
 
 namespace {
 
@@ -164,4 +164,4 @@ std::vector<CheckResult> validate_hanging_beam(const ValidationContext& context)
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::hanging_beam

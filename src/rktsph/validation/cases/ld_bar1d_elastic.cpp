@@ -27,7 +27,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::ld_bar1d_elastic {
 
 namespace {
 
@@ -195,4 +195,4 @@ std::vector<CheckResult> validate_ld_bar1d_elastic(const ValidationContext& cont
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::ld_bar1d_elastic

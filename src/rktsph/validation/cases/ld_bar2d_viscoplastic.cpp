@@ -27,7 +27,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::ld_bar2d_viscoplastic {
 
 namespace {
 
@@ -321,4 +321,4 @@ std::vector<CheckResult> validate_ld_bar2d_viscoplastic(const ValidationContext&
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::ld_bar2d_viscoplastic

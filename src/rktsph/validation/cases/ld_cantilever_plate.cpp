@@ -25,7 +25,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::ld_cantilever_plate {
 
 namespace {
 
@@ -265,4 +265,4 @@ std::vector<CheckResult> validate_ld_cantilever_plate(const ValidationContext& c
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::ld_cantilever_plate

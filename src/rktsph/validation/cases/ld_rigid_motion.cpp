@@ -20,7 +20,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::ld_rigid_motion {
 
 namespace {
 
@@ -167,4 +167,4 @@ std::vector<CheckResult> validate_ld_spinning_square(const ValidationContext& co
           check_at_least("min_spacing_ratio", smallest_spacing, 1.0, 0.5, "ratio")};
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::ld_rigid_motion

@@ -17,7 +17,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::ld_slope_cohesive {
 
 namespace {
 
@@ -104,4 +104,4 @@ std::vector<CheckResult> validate_ld_slope_cohesive(const ValidationContext& con
           check_at_least("post_failure_displacement", crest_ratio, 0.2, 0.2, "fraction")};
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::ld_slope_cohesive

@@ -27,7 +27,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::ld_slope_low_cohesion {
 
 namespace {
 
@@ -219,4 +219,4 @@ std::vector<CheckResult> validate_ld_slope_low_cohesion(const ValidationContext&
                         "fraction")};
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::ld_slope_low_cohesion

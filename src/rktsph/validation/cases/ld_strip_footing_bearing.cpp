@@ -33,7 +33,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::ld_strip_footing_bearing {
 
 namespace {
 
@@ -178,4 +178,4 @@ std::vector<CheckResult> validate_ld_strip_footing_bearing(const ValidationConte
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::ld_strip_footing_bearing

@@ -32,7 +32,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::ld_vertical_cut_footing {
 
 namespace {
 
@@ -202,4 +202,4 @@ std::vector<CheckResult> validate_ld_vertical_cut_footing(const ValidationContex
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::ld_vertical_cut_footing

@@ -30,7 +30,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::mcc_triaxial {
 
 namespace {
 
@@ -269,4 +269,4 @@ std::vector<CheckResult> validate_mcc_triaxial(const ValidationContext& context)
   return checks;
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::mcc_triaxial

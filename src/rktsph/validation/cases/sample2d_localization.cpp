@@ -29,7 +29,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::sample2d_localization {
 
 namespace {
 
@@ -198,4 +198,4 @@ std::vector<CheckResult> validate_sample2d_localization(const ValidationContext&
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::sample2d_localization

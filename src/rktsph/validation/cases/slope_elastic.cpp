@@ -12,7 +12,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::slope_elastic {
 
 namespace {
 
@@ -175,4 +175,4 @@ std::vector<CheckResult> validate_slope_elastic(const ValidationContext& context
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::slope_elastic

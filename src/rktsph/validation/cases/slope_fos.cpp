@@ -17,7 +17,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::slope_fos {
 
 namespace {
 
@@ -260,4 +260,4 @@ std::vector<CheckResult> validate_vertical_cut_frictional(const ValidationContex
   return checks;
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::slope_fos

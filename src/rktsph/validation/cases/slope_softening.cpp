@@ -14,7 +14,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::slope_softening {
 
 namespace {
 
@@ -126,4 +126,4 @@ std::vector<CheckResult> validate_slope_softening(const ValidationContext& conte
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::slope_softening

@@ -9,7 +9,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::slope_viscoplastic {
 
 namespace {
 
@@ -49,4 +49,4 @@ std::vector<CheckResult> validate_triangles_slope_viscoplastic(const ValidationC
   return validate_vertical_cut(context, "triangles-slope-viscoplastic", true);
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::slope_viscoplastic

@@ -28,7 +28,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::strip_footing_elastic {
 
 namespace {
 
@@ -290,4 +290,4 @@ std::vector<CheckResult> validate_triangles_strip_footing_elastic(
   return validate_strip_footing(context, "triangles-strip-footing-elastic");
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::strip_footing_elastic

@@ -16,7 +16,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::triangles_slope_elastic {
 
 namespace {
 
@@ -211,4 +211,4 @@ std::vector<CheckResult> validate_triangles_slope_elastic(const ValidationContex
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::triangles_slope_elastic

@@ -42,7 +42,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::vpw_consolidation {
 
 namespace {
 
@@ -347,4 +347,4 @@ std::vector<CheckResult> validate_triangles_vpw_consolidation(const ValidationCo
   return validate_consolidation(context, "triangles-vpw-consolidation");
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::vpw_consolidation

@@ -42,7 +42,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::vpw_harmonic_column {
 
 namespace {
 
@@ -297,4 +297,4 @@ std::vector<CheckResult> validate_vpw_harmonic_column(const ValidationContext& c
   return checks;
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::vpw_harmonic_column

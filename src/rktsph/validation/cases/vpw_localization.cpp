@@ -27,7 +27,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::vpw_localization {
 
 namespace {
 constexpr double kQuickSpacing = 0.05;  // 21 x 41 nodes, as the dry quick variant
@@ -133,4 +133,4 @@ std::vector<CheckResult> validate_vpw_localization(const ValidationContext& cont
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::vpw_localization

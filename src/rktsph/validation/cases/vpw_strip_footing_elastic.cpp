@@ -26,7 +26,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::vpw_strip_footing_elastic {
 
 namespace {
 
@@ -211,4 +211,4 @@ std::vector<CheckResult> validate_vpw_strip_footing_elastic(const ValidationCont
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::vpw_strip_footing_elastic

@@ -31,7 +31,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::vpw_strip_footing_plastic {
 
 namespace {
 
@@ -203,4 +203,4 @@ std::vector<CheckResult> validate_vpw_strip_footing_plastic(const ValidationCont
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::vpw_strip_footing_plastic

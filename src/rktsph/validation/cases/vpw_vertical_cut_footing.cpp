@@ -38,7 +38,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::vpw_vertical_cut_footing {
 
 namespace {
 
@@ -282,4 +282,4 @@ std::vector<CheckResult> validate_vpw_vertical_cut_footing(const ValidationConte
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::vpw_vertical_cut_footing

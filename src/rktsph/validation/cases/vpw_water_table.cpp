@@ -27,7 +27,7 @@
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
-namespace rktsph {
+namespace rktsph::case_checks::vpw_water_table {
 
 namespace {
 
@@ -228,4 +228,4 @@ std::vector<CheckResult> validate_vpw_water_table(const ValidationContext& conte
   };
 }
 
-}  // namespace rktsph
+}  // namespace rktsph::case_checks::vpw_water_table
