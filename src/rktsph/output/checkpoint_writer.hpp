@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rktsph/core/checkpoint.hpp"
+#include "rktsph/output/output_schedule.hpp"
 #include "rktsph/simulation/simulation.hpp"
 
 namespace rktsph {
@@ -21,7 +22,6 @@ class CheckpointWriter final : public Observer, public Checkpointed {
   CheckpointWriter(std::filesystem::path path, double interval, std::uint64_t case_hash,
                    std::vector<CheckpointPart> parts);
 
-  void on_start(const Simulation& simulation) override;
   void after_step(const Simulation& simulation) override;
   void save_checkpoint(CheckpointOut& out) const override;
   void restore_checkpoint(CheckpointIn& in) override;
@@ -32,10 +32,9 @@ class CheckpointWriter final : public Observer, public Checkpointed {
 
  private:
   std::filesystem::path path_;
-  double interval_;
+  OutputSchedule schedule_;
   std::uint64_t case_hash_;
   std::vector<CheckpointPart> parts_;
-  double next_time_ = 0.0;
   long written_ = 0;
 };
 

@@ -12,7 +12,6 @@
 #include "rktsph/core/build_info.hpp"
 #include "rktsph/output/atomic_file.hpp"
 #include "rktsph/output/json_writer.hpp"
-#include "rktsph/output/output_times.hpp"
 #include "rktsph/output/vtu_writer.hpp"
 
 namespace rktsph {
@@ -160,17 +159,6 @@ void check_run_observers(const Simulation& simulation) {
   output_field_selection(simulation);
   // The recorder only resolves its probes when constructed; it writes at on_start and after.
   const ProbeRecorder probes(simulation, {});
-}
-
-OutputSchedule::OutputSchedule(double interval)
-    : interval_(interval),
-      next_time_(interval > 0.0 ? interval : std::numeric_limits<double>::infinity()) {}
-
-bool OutputSchedule::due(double time, double time_step) {
-  if (!output_time_reached(time, next_time_, time_step)) return false;
-  while (output_time_reached(time, next_time_, time_step))
-    next_time_ += interval_;
-  return true;
 }
 
 FieldSeriesWriter::FieldSeriesWriter(const Simulation& simulation, std::filesystem::path directory)

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "rktsph/output/output_schedule.hpp"
 #include "rktsph/output/probe_csv.hpp"
 #include "rktsph/output/progress.hpp"
 #include "rktsph/output/pvd_writer.hpp"
@@ -17,23 +18,6 @@
 #include "rktsph/simulation/surface_watch.hpp"
 
 namespace rktsph {
-
-/// When an output every `interval` of simulated time is due: at the first step whose time reaches
-/// the next multiple k * interval (within 1e-6 of a step), after which the next due time is the
-/// first multiple beyond that step's time (so one output per step at most). Interval 0: never.
-class OutputSchedule {
- public:
-  explicit OutputSchedule(double interval);
-  /// True if an output is due at `time` (and moves on to the next one).
-  bool due(double time, double time_step);
-  /// The next due time, saved and restored by checkpoints.
-  double next_time() const { return next_time_; }
-  void set_next_time(double next_time) { next_time_ = next_time; }
-
- private:
-  double interval_;
-  double next_time_;
-};
 
 /// Everything the standard observers of a run check in their constructors (output fields, probe
 /// groups and fields), without writing anything: `check` runs it so that it refuses what `run`
