@@ -597,6 +597,21 @@ TEST(CommandLine, ImplausibleValuesAreWarnedOfByCheckAndRun) {
   EXPECT_NE(summary.find("materials.soil.young_modulus", warnings), std::string::npos) << summary;
 }
 
+// Issue 30: summary.json says whether the energy budget closes (docs/input-reference.md, "Energy
+// budget"); a correct run does, without a warning (the flagged side is unit-tested in
+// tests/simulation/energy_budget_test.cpp).
+TEST(CommandLine, SummarySaysWhetherTheEnergyBudgetCloses) {
+  const fs::path path = write_case("budget.yaml", kBar);
+  const fs::path out = scratch("budget-run");
+  const Result ran = run("run -q --overwrite " + path.string() + " -o " + out.string());
+  EXPECT_EQ(ran.status, 0) << ran.output;
+  EXPECT_EQ(ran.output.find("energy budget"), std::string::npos) << ran.output;
+  const std::string summary = read_whole_file(out / "summary.json");
+  EXPECT_NE(summary.find("\"residual_fraction\": "), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"closes\": true"), std::string::npos) << summary;
+  EXPECT_EQ(summary.find("does not close"), std::string::npos) << summary;
+}
+
 // The bundled cases are what users copy: none of them may give a plausibility warning. The sizes
 // L and XL of BAR-WAVE-2D (1.6e5 and 1e6 nodes, 0.2 and 1.2 GB to check) are left out: they are
 // sizes S and M at finer spacings, with the same materials and loads, and a smaller time step.

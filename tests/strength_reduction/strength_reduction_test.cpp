@@ -2,6 +2,7 @@
 // the input errors for the cases it cannot treat.
 #include "rktsph/strength_reduction/strength_reduction.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -109,6 +110,33 @@ TEST(StrengthReduction, RefusesCasesWithoutAStrengthToReduce) {
                  "preconsolidation_pressure: 1.0e5, initial_void_ratio: 1.0, fluidity: 1.0}"));
   EXPECT_NE(cam_clay.find("materials.soil.model"), std::string::npos) << cam_clay;
   EXPECT_NE(cam_clay.find("perzyna_modified_cam_clay"), std::string::npos) << cam_clay;
+}
+
+std::string saturated_slope_case(double conductivity) {
+  std::string text = slope_case(kDruckerPrager);
+  text.insert(text.find("dimension"), "model: saturated_vpw\n");
+  return text + "pore_fluid: {porosity: 0.3, bulk_modulus: 2.2e9, density: 1000, " +
+         fmt::format("hydraulic_conductivity: {}}}\n", conductivity);
+}
+
+TEST(StrengthReduction, ASaturatedCaseMustDrainWithinItsTimeSpan) {
+  // Eq. 10.3 by hand for the soil (the stiffer base consolidates faster): M = E (1 - nu) / ((1 +
+  // nu)(1 - 2 nu)), c_v = k / (rho_w g) / (1 / M + n / K_w), over the body's height L = 5 m; the
+  // case runs 3 s, so it must drain in 1.5 s.
+  const double oedometric = 2.0e7 * 0.7 / (1.3 * 0.4);
+  const auto drainage_time = [&](double conductivity) {
+    const double coefficient = conductivity / (1000.0 * 9.81) / (1.0 / oedometric + 0.3 / 2.2e9);
+    return 25.0 / coefficient;
+  };
+  const double enough = 2.0 * drainage_time(1.0) / 3.0;  // the least k that drains in time
+  EXPECT_NO_THROW(check_strength_reduction_case(
+      read_case_text(saturated_slope_case(1.02 * enough), "fos.yaml")));
+  const std::string slow = error_of(saturated_slope_case(0.98 * enough));
+  EXPECT_NE(slow.find("pore_fluid.hydraulic_conductivity"), std::string::npos) << slow;
+  EXPECT_NE(slow.find("drained"), std::string::npos) << slow;
+  EXPECT_NE(slow.find(fmt::format("{:.3g} m/s", enough)), std::string::npos) << slow;
+  const std::string dry = error_of(saturated_slope_case(0.0));
+  EXPECT_NE(dry.find("a conductivity > 0"), std::string::npos) << dry;
 }
 
 TEST(StrengthReduction, RefusesABadFactor) {

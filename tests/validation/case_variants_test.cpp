@@ -166,7 +166,9 @@ TEST(CaseVariant, SlopeElasticAtAnotherPoissonRatioAndDensity) {
 
 // The water table higher, a given density above it, alpha < 1 and another nu: the closed form
 // follows the case (docs/theory.md eq. 8.8), and the run is lengthened to drain the deeper layer.
-TEST(CaseVariant, WaterTableAtAnotherLevelDensityAndBiotCoefficient) {
+// The slope's strength reductions follow the density, alpha and nu too, with Bishop's factor
+// (its table stays its own). Slow: the two strength reductions of the slope.
+TEST(CaseVariantSlow, WaterTableAtAnotherLevelDensityAndBiotCoefficient) {
   const OneThread one_thread;
   const ValidationResult result =
       run_named("vpw-water-table", quick_context({{"pore_fluid.water_table.level", "7.5"},

@@ -144,6 +144,11 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
   outcome.directory = directory;
   outcome.steps = simulation->state().step;
   outcome.wall_seconds = simulation->wall_seconds();
+  if (std::string budget = energy_closure_warning(energy.totals()); !budget.empty()) {
+    log.warning(budget);
+    if (options.progress_stream) *options.progress_stream << "rktsph: " << budget << "\n";
+    warnings.push_back(std::move(budget));
+  }
   outcome.warnings = std::move(warnings);
   log_end(log, outcome, simulation->state().time);
   if (inspect) inspect(*simulation);

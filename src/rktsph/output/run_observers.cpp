@@ -103,6 +103,10 @@ JsonValue energy_summary(const EnergyTotals& totals, bool saturated) {
   energy.set("dissipated", totals.dissipated());
   energy.set("plastic_dissipation", totals.plastic_dissipation);
   energy.set("stress", saturated ? "effective" : "total");
+  const EnergyClosure closure = energy_closure(totals);
+  energy.set("scale", closure.scale);
+  energy.set("residual_fraction", closure.residual);
+  energy.set("closes", closure.closes);
   return energy;
 }
 
@@ -468,6 +472,9 @@ void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,
   JsonValue warnings = JsonValue::array();
   for (const std::string& warning : warnings_)
     warnings.push_back(warning);
+  if (energy_)
+    if (std::string energy = energy_closure_warning(energy_->totals()); !energy.empty())
+      warnings.push_back(std::move(energy));
   summary.set("warnings", std::move(warnings));
   const StepTimeSplit split = simulation.step().time_split();
   JsonValue step_time = JsonValue::object();

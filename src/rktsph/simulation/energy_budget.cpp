@@ -1,12 +1,16 @@
 #include "rktsph/simulation/energy_budget.hpp"
-#include "rktsph/core/small_tensor.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
+
+#include "rktsph/core/small_tensor.hpp"
 
 namespace rktsph {
 
@@ -169,6 +173,38 @@ void EnergyBudget::restore_checkpoint(CheckpointIn& in) {
   totals_ = {v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]};
   last_ = {v[8], v[9], v[10], v[11], v[12], v[13]};
   last_time_ = v[14];
+}
+
+EnergyClosure energy_closure(const EnergyTotals& totals) {
+  EnergyClosure closure;
+  closure.scale = std::max({std::abs(totals.work_of_loads()),
+                            totals.initial_kinetic + totals.initial_stored_elastic,
+                            totals.kinetic + totals.stored_elastic, totals.damping_dissipation});
+  const double dissipated = totals.dissipated();
+  if (std::isnan(closure.scale) || std::isnan(dissipated)) {
+    closure.residual = std::numeric_limits<double>::quiet_NaN();
+    closure.closes = false;
+  } else if (closure.scale > 0.0) {
+    closure.residual = dissipated / closure.scale;
+    closure.closes = closure.residual >= -kCreatedEnergyLimit;
+  }
+  return closure;
+}
+
+std::string energy_closure_warning(const EnergyTotals& totals) {
+  const EnergyClosure closure = energy_closure(totals);
+  if (closure.closes) return {};
+  return fmt::format(
+      "the energy budget does not close: the run created {:.3g} J, {:.0f} % of the largest energy "
+      "of its balance ({:.4g} J), where discretisation errors stay below {:.0f} %: its kinetic and "
+      "stored elastic energy ({:.4g} J) and what damping took ({:.4g} J) exceed the work of the "
+      "loads ({:.4g} J) and the initial energy ({:.4g} J) (summary.json, energy). Energy from "
+      "nowhere is an instability of the discretisation: look for a growing or odd-even pattern in "
+      "the velocity of the last output files, and treat the results with suspicion",
+      -closure.residual * closure.scale, -100.0 * closure.residual, closure.scale,
+      100.0 * kCreatedEnergyLimit, totals.kinetic + totals.stored_elastic,
+      totals.damping_dissipation, totals.work_of_loads(),
+      totals.initial_kinetic + totals.initial_stored_elastic);
 }
 
 }  // namespace rktsph

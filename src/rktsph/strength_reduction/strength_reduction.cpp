@@ -44,6 +44,39 @@ double reduced_angle(double degrees, double factor) {
   return std::atan(std::tan(degrees * kDegree) / factor) / kDegree;
 }
 
+/// The slowest consolidation of a saturated case: L^2 / c_v over the body's height L with the
+/// least c_v = k_bar / (alpha^2 / M + n / K_w) of its materials (docs/theory.md eq. 10.3).
+struct Drainage {
+  double height = 0.0, coefficient = 0.0;
+  double time() const { return height * height / coefficient; }
+};
+
+Drainage slowest_drainage(const CaseDescription& description) {
+  const PoreFluidSpec& fluid = *description.pore_fluid;
+  const double permeability = fluid.hydraulic_conductivity / (fluid.density * fluid.gravity);
+  const double storage = fluid.porosity / fluid.bulk_modulus;
+  Drainage drainage;
+  drainage.coefficient = std::numeric_limits<double>::infinity();
+  for (const auto& [name, block] : description.materials) {
+    const auto young = block.values.find("young_modulus");
+    const auto poisson = block.values.find("poisson_ratio");
+    if (young == block.values.end() || poisson == block.values.end()) continue;
+    const double nu = poisson->second.value;
+    const double oedometric = young->second.value * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    const double alpha = fluid.biot_coefficient;
+    drainage.coefficient =
+        std::min(drainage.coefficient, permeability / (alpha * alpha / oedometric + storage));
+  }
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (const ShapeSpec& shape : description.geometry.shapes)
+    for (const Vec3& vertex : shape.vertices) {
+      low = std::min(low, vertex[1]);
+      high = std::max(high, vertex[1]);
+    }
+  drainage.height = high - low;
+  return drainage;
+}
+
 /// Records the largest speed and displacement over the SPH nodes, about 400 samples a run, and
 /// ends the run once the largest displacement exceeds `limit` (it fails whatever follows).
 class MotionRecorder final : public Observer {
@@ -149,11 +182,26 @@ std::vector<std::string> reducible_material_models() {
 
 void check_strength_reduction_case(const CaseDescription& description) {
   const SourceLocation file{description.file, 0, 0};
-  if (description.model == ModelKind::SaturatedVpw)
-    throw InputError(file, "model", "saturated_vpw",
-                     "strength reduction is for dry cases (the effective stresses of a saturated "
-                     "run change with the pore pressures as the strength is reduced)",
-                     "dry_solid or dry_large_deformation");
+  if (description.model == ModelKind::SaturatedVpw) {
+    // A drained factor (eq. 10.3): the excess pore pressures that a change of strength makes must
+    // drain within the run, or the run mixes drained and undrained strengths.
+    const Drainage drainage = slowest_drainage(description);
+    if (!(description.time.end >= 2.0 * drainage.time()))
+      throw InputError(
+          description.pore_fluid->where, "pore_fluid.hydraulic_conductivity",
+          fmt::format("{:g}", description.pore_fluid->hydraulic_conductivity),
+          fmt::format("the factor of safety of a saturated case is a drained one, but its excess "
+                      "pore pressures drain in about L^2/c_v = {:.3g} s (c_v = {:.3g} m2/s over "
+                      "the body's height L = {:g} m), more than half of time.end = {:g} s",
+                      drainage.time(), drainage.coefficient, drainage.height, description.time.end),
+          std::isfinite(drainage.time())
+              ? fmt::format("a conductivity of at least {:.3g} m/s (a drained factor does not "
+                            "depend on it), or time.end >= {:.3g} s",
+                            description.pore_fluid->hydraulic_conductivity * 2.0 * drainage.time() /
+                                description.time.end,
+                            2.0 * drainage.time())
+              : std::string("a conductivity > 0 (a drained factor does not depend on it)"));
+  }
   if (description.dimension != 2)
     throw InputError(file, "dimension", std::to_string(description.dimension),
                      "strength reduction needs a 2D body with a failure mechanism", "2");

@@ -1,9 +1,10 @@
 // The factor of safety by strength reduction (docs/theory.md §10, `rktsph fos`): the strengths of
-// a dry case are divided by a factor F (c' and tan phi' of the frictional materials, the yield
-// stress of a Von Mises one; eq. 10.1), the case is run with its own loads and time span, and the
-// run is classified stable or failing (eq. 10.2: it must come to rest before its end time, with
-// its largest displacement within a multiple of the elastic one). F is bisected between a stable
-// and a failing factor; the factor of safety is the middle of the final bracket.
+// a case (dry, or saturated and drained) are divided by a factor F (c' and tan phi' of the
+// frictional materials, the yield stress of a Von Mises one; eq. 10.1), the case is run with its
+// own loads and time span, and the run is classified stable or failing (eq. 10.2: it must come to
+// rest before its end time, with its largest displacement within a multiple of the elastic one). F
+// is bisected between a stable and a failing factor; the factor of safety is the middle of the
+// final bracket.
 #pragma once
 
 #include <filesystem>
@@ -21,8 +22,9 @@ namespace rktsph {
 std::vector<std::string> reducible_material_models();
 
 /// InputError (file, key, value, what is allowed) for a case strength reduction cannot treat: not
-/// a dry 2D model, a material with a strength it does not reduce (Cam-Clay), or no material with a
-/// strength at all.
+/// a 2D model, a material with a strength it does not reduce (Cam-Clay), no material with a
+/// strength at all, or a saturated case whose excess pore pressures would not drain within its
+/// time span (the factor is a drained one, docs/theory.md eq. 10.3).
 void check_strength_reduction_case(const CaseDescription& description);
 
 /// The case with every strength divided by `factor` > 0 (eq. 10.1): cohesion, minimum_cohesion,

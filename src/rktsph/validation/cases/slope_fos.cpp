@@ -6,13 +6,11 @@
 // full runs (the criterion of eq. 10.2 is not tuned to one).
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 
-#include "rktsph/core/error.hpp"
 #include "rktsph/strength_reduction/strength_reduction.hpp"
+#include "rktsph/validation/fos_report.hpp"
 #include "rktsph/validation/references/limit_loads.hpp"
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
@@ -30,80 +28,7 @@ struct FosRun {
 };
 
 StrengthReductionResult run_fos(const ValidationContext& context, const FosRun& run) {
-  StrengthReductionOptions options = run.options;
-  options.existing_results = ExistingResults::Overwrite;  // the validation owns its folders
-  return find_factor_of_safety(run.description, options,
-                               context.output_directory / run.description.name / run.label);
-}
-
-double factor_or_nan(const StrengthReductionResult& result) {
-  return result.bracket_holds ? result.factor : std::numeric_limits<double>::quiet_NaN();
-}
-
-/// The runs of one strength reduction: u_max / u_el against F, stable and failing.
-void add_bisection_figure(ValidationReport& report, const std::string& name,
-                          const std::string& title, const StrengthReductionResult& result,
-                          const std::vector<std::pair<std::string, double>>& references) {
-  Series stable{"stable runs", {}, {}, "points"}, failing{"failing runs", {}, {}, "points"};
-  double low = 1.0, high = 1.0;
-  for (const ReductionRun& run : result.runs) {
-    const double ratio = run.largest_displacement / result.elastic.largest_displacement;
-    Series& series = run.failing ? failing : stable;
-    series.x.push_back(run.factor);
-    series.y.push_back(ratio);
-    low = std::min(low, ratio);
-    high = std::max(high, ratio);
-  }
-  Figure figure{name,
-                title,
-                "strength factor F (c' / F, tan phi' / F) [-]",
-                "largest displacement at the end / elastic one [-]",
-                {std::move(stable), std::move(failing)}};
-  figure.y_scale = "log";
-  low *= 0.5;
-  high *= 2.0;
-  for (const auto& [label, value] : references)
-    figure.series.push_back({label, {value, value}, {low, high}, "dashed"});
-  if (result.bracket_holds)
-    figure.series.push_back({fmt::format("bisected F = {:.3f}", result.factor),
-                             {result.factor, result.factor},
-                             {low, high},
-                             "line"});
-  report.add_figure(std::move(figure));
-}
-
-void add_speed_figure(ValidationReport& report, const std::string& name,
-                      const StrengthReductionResult& result) {
-  Figure figure{name,
-                "Largest speed over the nodes, one curve per run (at rest: 1e-3 of the peak)",
-                "time [s]",
-                "largest speed [m/s]",
-                {}};
-  figure.y_scale = "log";
-  for (const ReductionRun& run : result.runs)
-    figure.series.push_back(
-        {fmt::format("F = {:.3f} ({})", run.factor, run.failing ? "failing" : "stable"), run.time,
-         run.speed, "line"});
-  report.add_figure(std::move(figure));
-}
-
-void add_mechanism_picture(ValidationReport& report, const std::string& name,
-                           const StrengthReductionResult& result) {
-  if (const ReductionRun* failing = result.first_failing())
-    report.add_picture(
-        {name, failing->directory.string(), "eps_vp", -1, -1.0, 1.0,
-         fmt::format("Equivalent viscoplastic strain at t = {:.3g} s of the failing run with the "
-                     "smallest strength factor (F = {:.4f}), on the deformed configuration "
-                     "(displacements at true scale): the failure mechanism.",
-                     failing->end_time, failing->factor)});
-}
-
-std::string runs_text(const StrengthReductionResult& result) {
-  std::string text;
-  for (const ReductionRun& run : result.runs)
-    text += fmt::format("{}F = {:.4f} {}", text.empty() ? "" : "; ", run.factor,
-                        run.failing ? "failing" : "stable");
-  return text;
+  return run_strength_reduction(context, run.description, run.options, run.label);
 }
 
 /// The quick variant's lattice and time span (4 s: its stable runs come to rest by 2.5 s).
@@ -149,7 +74,8 @@ std::vector<CheckResult> validate_slope_fos_homogeneous(const ValidationContext&
     griffiths_text = fmt::format(
         " Griffiths and Lane's example 1 (H = 10 m, 2:1, c'/(gamma H) = 0.05, phi' = 20 deg): F = "
         "{:.3f} in [{:.3f}, {:.3f}] against their 1.4 ({}).",
-        griffiths.factor, griffiths.stable, griffiths.failing, runs_text(griffiths));
+        griffiths.factor, griffiths.stable, griffiths.failing,
+        strength_reduction_runs_text(griffiths));
   }
   if (context.report) {
     context.report->describe(fmt::format(
@@ -161,10 +87,10 @@ std::vector<CheckResult> validate_slope_fos_homogeneous(const ValidationContext&
         "{:.3f}] ({}) against Bishop's 1.534 (+-5 %) and finite-element strength reduction's "
         "1.54.{}",
         verruijt.description.time.end, result.factor, result.stable, result.failing,
-        runs_text(result), griffiths_text));
+        strength_reduction_runs_text(result), griffiths_text));
     add_bisection_figure(*context.report, "bisection", "Verruijt's slope: outcome of each run",
                          result, {{"Bishop 1.534", bishop}, {"FE SRM 1.54", 1.54}});
-    add_speed_figure(*context.report, "speed", result);
+    add_strength_reduction_speed_figure(*context.report, "speed", result);
     add_mechanism_picture(*context.report, "eps_vp_mechanism", result);
     if (!context.quick) {
       add_bisection_figure(*context.report, "bisection_griffiths_lane",
@@ -240,12 +166,13 @@ std::vector<CheckResult> validate_vertical_cut_frictional(const ValidationContex
         " H = {:g} m, gamma = {:.3g} kN/m^3: F = {:.3f} in [{:.3f}, {:.3f}] ({}); the bound's F = "
         "{:.3f}; N = gamma H F / c' = {:.3f} against 3.83 tan(45 + phi_F/2) = {:.3f}.",
         cut.height, cut.unit_weight * 1e-3, result.factor, result.stable, result.failing,
-        runs_text(result), bound, number, bound_number);
+        strength_reduction_runs_text(result), bound, number, bound_number);
     if (context.report) {
       add_bisection_figure(*context.report, "bisection" + suffix,
                            fmt::format("Vertical cut H = {:g} m: outcome of each run", cut.height),
                            result, {{"upper bound 3.83 tan(45 + phi/2)", bound}});
-      if (variant.label == "H6") add_speed_figure(*context.report, "speed", result);
+      if (variant.label == "H6")
+        add_strength_reduction_speed_figure(*context.report, "speed", result);
       add_mechanism_picture(*context.report, "eps_vp_mechanism" + suffix, result);
     }
   }

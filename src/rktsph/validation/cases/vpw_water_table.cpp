@@ -13,6 +13,14 @@
 // - horizontal_stress_error: the same for sigma'_h against K0 sigma'_v,ref, K0 = nu/(1 - nu) (the
 //   laterally confined layer, mirror sides).
 // - residual_velocity_ratio: largest |v| at the end over its peak (rest_checks.hpp).
+//
+// And a slope with a water table (cases/vpw-water-table-slope, docs/theory.md §10.4): its drained
+// factor of safety by strength reduction against Bishop's simplified method on the same pore
+// pressures (references/slope_limit_equilibrium.hpp), and against the factor of the same slope
+// dry (the model dry_solid, the weight above the table everywhere, no water):
+// - slope_factor_of_safety: F with the table, within 5 % of Bishop's (as the dry slope's check);
+// - slope_factor_ratio: F with the table over F dry, within 0.05 of Bishop's ratio (about 0.86:
+//   the water lowers the factor by some 14 %).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -24,6 +32,8 @@
 
 #include "rktsph/core/error.hpp"
 #include "rktsph/physics/water_table.hpp"
+#include "rktsph/validation/fos_report.hpp"
+#include "rktsph/validation/references/slope_limit_equilibrium.hpp"
 #include "rktsph/validation/validation_cases.hpp"
 #include "rktsph/validation/validation_support.hpp"
 
@@ -151,10 +161,11 @@ RestErrors measure_rest(const Simulation& simulation, const Layer& layer, Profil
   return errors;
 }
 
-void report_water_table(ValidationReport& report, const std::filesystem::path& directory,
-                        const CaseDescription& description, const Layer& layer,
-                        const Profiles& profiles, const SpeedHistory& speeds) {
-  report.describe(fmt::format(
+/// The layer's figures; returns its paragraph of the description.
+std::string report_water_table(ValidationReport& report, const std::filesystem::path& directory,
+                               const CaseDescription& description, const Layer& layer,
+                               const Profiles& profiles, const SpeedHistory& speeds) {
+  const std::string text = fmt::format(
       "Issue 30: a saturated linear elastic layer (E = {:g} MPa, nu = {:g}; rho = {:g} kg/m3 "
       "below the water table, rho_above = {:g} kg/m3 above it; rho_w = {:g} kg/m3, alpha = {:g}) "
       "{:g} m deep and {:g} m wide between mirror sides, on a fixed impermeable base, with the "
@@ -168,7 +179,7 @@ void report_water_table(ValidationReport& report, const std::filesystem::path& d
       1e-6 * layer.young, layer.poisson, layer.density, layer.density_above, layer.water_density,
       layer.biot, layer.top - layer.base, layer.x_max - layer.x_min, layer.table, layer.spacing,
       description.gravity->factor.duration,
-      description.damping ? description.damping->coefficient : 0.0, description.time.end));
+      description.damping ? description.damping->coefficient : 0.0, description.time.end);
   // A closed-form profile drawn as the SPH points are, the value against the height y.
   const auto profile = [&layer](std::string label, const std::function<double(double)>& value) {
     Series curve = sample_curve(std::move(label), layer.base, layer.top, 201, value);
@@ -194,6 +205,137 @@ void report_water_table(ValidationReport& report, const std::filesystem::path& d
   report.add_picture({"pore_pressure", directory.string(), "pore_pressure", -1, -1.0, 0.0,
                       "Total pore pressure at the end: hydrostatic below the water table, zero "
                       "in the drained soil above it, uniform across the width."});
+  return text;
+}
+
+constexpr const char* kSlopeFolder = "vpw-water-table-slope";
+
+/// The material of the slope (its first shape's).
+const std::string& slope_material(const CaseDescription& description) {
+  return description.geometry.shapes.at(0).material;
+}
+
+/// The slope of the case as the limit-equilibrium reference sees it: the upper boundary of its
+/// polygon (the vertices above its lowest point, by x) as the ground, its lowest point as the
+/// rigid base, the weights of eq. 6.8 above and below the table, and u = alpha p_h (the model's
+/// effective stress is sigma + alpha p_w I, eq. 6.7).
+references::SlopeProfile slope_profile(const CaseDescription& description) {
+  const ShapeSpec& shape = description.geometry.shapes.at(0);
+  if (shape.kind != ShapeSpec::Kind::Polygon || !description.pore_fluid ||
+      !description.pore_fluid->water_table)
+    throw RunError(
+        fmt::format("case {}: expected a polygon slope with a water table", kSlopeFolder));
+  const PoreFluidSpec& fluid = *description.pore_fluid;
+  const std::string& material = slope_material(description);
+  const double gravity = downward_gravity(description);
+  const double density = material_parameter(description, material, "density");
+  references::SlopeProfile profile;
+  profile.base = 1e300;
+  for (const Vec3& vertex : shape.vertices)
+    profile.base = std::min(profile.base, vertex[1]);
+  for (const Vec3& vertex : shape.vertices)
+    if (vertex[1] > profile.base) profile.ground.push_back({vertex[0], vertex[1]});
+  std::sort(profile.ground.begin(), profile.ground.end());
+  for (std::size_t i = 1; i < profile.ground.size(); ++i)
+    if (profile.ground[i][0] == profile.ground[i - 1][0])
+      throw RunError(
+          fmt::format("case {}: the slope's ground is not a function of x (two vertices "
+                      "at x = {} m)",
+                      kSlopeFolder, profile.ground[i][0]));
+  profile.unit_weight_above = density_above_table(fluid, density) * gravity;
+  profile.unit_weight_below = density * gravity;
+  profile.cohesion = material_parameter(description, material, "cohesion");
+  profile.friction_angle = material_parameter(description, material, "friction_angle");
+  const WaterTableSpec& table = *fluid.water_table;
+  if (table.level)
+    profile.water_table = {{0.0, *table.level}};
+  else
+    profile.water_table = table.polyline;
+  profile.water_unit_weight = fluid.biot_coefficient * fluid.density * gravity;
+  return profile;
+}
+
+/// The same slope dry: the dry model, every material weighing what it weighs above the table,
+/// no pore fluid (and no pore-pressure condition or probe).
+CaseDescription dry_slope(const CaseDescription& wet) {
+  CaseDescription dry = wet;
+  dry.model = ModelKind::DrySolid;
+  for (auto& [name, block] : dry.materials) {
+    Parameter& density = block.values.at("density");
+    density.value = density_above_table(*wet.pore_fluid, density.value);
+  }
+  dry.pore_fluid.reset();
+  std::erase_if(dry.boundary_conditions, [](const BoundaryConditionSpec& condition) {
+    return condition.kind == BoundaryConditionSpec::Kind::PorePressure;
+  });
+  for (ProbeSpec& probe : dry.probes)
+    std::erase(probe.fields, std::string("pore_pressure"));
+  std::erase_if(dry.probes, [](const ProbeSpec& probe) { return probe.fields.empty(); });
+  return dry;
+}
+
+struct SlopeFactors {
+  references::SlipCircle bishop_wet, bishop_dry;
+  StrengthReductionResult wet, dry;
+  double ratio() const { return factor_or_nan(wet) / factor_or_nan(dry); }
+  double bishop_ratio() const { return bishop_wet.factor / bishop_dry.factor; }
+};
+
+/// Both strength reductions, each bracketed about its Bishop factor: full, [0.85, 1.15] F_B
+/// halved to 1 % of F_B; quick (dx = 1 m), [0.9, 1.1] F_B halved to 2.5 % (three bisections). The
+/// result is the middle of a final bracket, so it lies on a grid of the reference: these grids
+/// keep it off the check's 5 % bounds (quick: F_B (0.9125 + 0.025 k)).
+SlopeFactors measure_slope_factors(const ValidationContext& context) {
+  std::vector<CaseOverride> overrides = {{"output.interval", "0"}};
+  if (context.quick) overrides.push_back({"geometry.spacing", "1"});
+  // The overrides of a variant (`--set`) apply to the slope too, except where the water table
+  // lies: the layer's level means nothing on the slope, whose phreatic line is drawn with its
+  // ground (a level there would also clash with its polyline).
+  ValidationContext slope_context = context;
+  std::erase_if(slope_context.overrides, [](const CaseOverride& override) {
+    return override.key.starts_with("pore_fluid.water_table.level") ||
+           override.key.starts_with("pore_fluid.water_table.polyline");
+  });
+  const CaseDescription wet = load_bundled_case(slope_context, kSlopeFolder, overrides);
+  SlopeFactors factors;
+  references::SlopeProfile profile = slope_profile(wet);
+  factors.bishop_wet = references::critical_bishop_circle(profile);
+  profile.water_table.clear();
+  factors.bishop_dry = references::critical_bishop_circle(profile);
+  const auto bisect = [&](const CaseDescription& description, double reference,
+                          const std::string& label) {
+    StrengthReductionOptions options;
+    options.stable = (context.quick ? 0.9 : 0.85) * reference;
+    options.failing = (context.quick ? 1.1 : 1.15) * reference;
+    options.tolerance = (context.quick ? 0.025 : 0.01) * reference;
+    return run_strength_reduction(context, description, options, label);
+  };
+  factors.wet = bisect(wet, factors.bishop_wet.factor, "wet");
+  factors.dry = bisect(dry_slope(wet), factors.bishop_dry.factor, "dry");
+  return factors;
+}
+
+/// The slope's figures; returns its paragraph of the description.
+std::string report_slope(ValidationReport& report, const SlopeFactors& factors) {
+  const std::string text = fmt::format(
+      " The slope of {} (Verruijt's slope of slope-fos-homogeneous with a phreatic line to the "
+      "toe), drained strength reduction (docs/theory.md §10.4): with the water table F = {:.3f} "
+      "in [{:.3f}, {:.3f}] ({}) against Bishop's simplified {:.3f} on the same pore pressures "
+      "(critical circle centre ({:.2f}, {:.2f}) m, R = {:.2f} m); dry F = {:.3f} in [{:.3f}, "
+      "{:.3f}] ({}) against Bishop's {:.3f}. Ratio wet/dry {:.3f} against Bishop's {:.3f}.",
+      kSlopeFolder, factors.wet.factor, factors.wet.stable, factors.wet.failing,
+      strength_reduction_runs_text(factors.wet), factors.bishop_wet.factor,
+      factors.bishop_wet.centre_x, factors.bishop_wet.centre_y, factors.bishop_wet.radius,
+      factors.dry.factor, factors.dry.stable, factors.dry.failing,
+      strength_reduction_runs_text(factors.dry), factors.bishop_dry.factor, factors.ratio(),
+      factors.bishop_ratio());
+  add_bisection_figure(report, "slope_bisection_wet",
+                       "Slope with a water table: outcome of each run", factors.wet,
+                       {{"Bishop, same pore pressures", factors.bishop_wet.factor}});
+  add_bisection_figure(report, "slope_bisection_dry", "The same slope dry: outcome of each run",
+                       factors.dry, {{"Bishop, dry", factors.bishop_dry.factor}});
+  add_mechanism_picture(report, "slope_mechanism_wet", factors.wet);
+  return text;
 }
 
 }  // namespace
@@ -216,16 +358,28 @@ std::vector<CheckResult> validate_vpw_water_table(const ValidationContext& conte
       [&](const Simulation& simulation) { errors = measure_rest(simulation, layer, profiles); },
       {&speeds.observer()});
   const double residual = residual_velocity_ratio(speeds.history());
+  std::string description_text;
   if (context.report)
-    report_water_table(*context.report, directory, description, layer, profiles, speeds.history());
+    description_text = report_water_table(*context.report, directory, description, layer, profiles,
+                                          speeds.history());
   // Tolerances: the issue's 2 % on p_w and sigma'_v; sigma'_h alike; rest as the other held
   // loads (1e-3 of the peak velocity).
-  return {
+  std::vector<CheckResult> checks = {
       check_at_most("pore_pressure_error", errors.pore_pressure, 0.0, 0.02, "fraction"),
       check_at_most("effective_stress_error", errors.effective_stress, 0.0, 0.02, "fraction"),
       check_at_most("horizontal_stress_error", errors.horizontal_stress, 0.0, 0.02, "fraction"),
       check_at_most("residual_velocity_ratio", residual, 0.0, 1e-3, "fraction"),
   };
+  // The slope: 5 % on F as the dry slope's check against Bishop (slope_fos.cpp); the ratio within
+  // 0.05, of which the bisections' final brackets (2.5 % of F quick, 1 % full) take up to 0.025.
+  const SlopeFactors slope = measure_slope_factors(context);
+  checks.push_back(check_within("slope_factor_of_safety", factor_or_nan(slope.wet),
+                                slope.bishop_wet.factor, 0.05 * slope.bishop_wet.factor, "1"));
+  checks.push_back(
+      check_within("slope_factor_ratio", slope.ratio(), slope.bishop_ratio(), 0.05, "1"));
+  if (context.report)
+    context.report->describe(description_text + report_slope(*context.report, slope));
+  return checks;
 }
 
 }  // namespace rktsph::case_checks::vpw_water_table
