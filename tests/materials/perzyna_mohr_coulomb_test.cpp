@@ -318,5 +318,23 @@ TEST(PerzynaMohrCoulomb, NoFlowInsideTheHexagon) {
   EXPECT_FALSE(material.flows(inside, internal));
 }
 
+// Issue 30: a point that has flowed says so after it has unloaded (eps_vp > 0), so that the
+// zero-energy controls that follow flow (docs/theory.md eqs. 3.10, 3.14) keep its cell at the
+// near-flow strength. Without it a cell at yield switched between no control and the full one
+// from step to step, which held a slope near failure in a never-ending oscillation (§10.4).
+TEST(PerzynaMohrCoulomb, RemembersThatItHasFlowed) {
+  const auto material = make_material(10.0);
+  const PointState start = initial_point_state(material, kIsotropic);
+  EXPECT_FALSE(material.has_flowed(start.internal));
+  const auto history =
+      drive(material, StrainPath::uniaxial_stress(-1e-3, 30.0), start, options_with_step(0.01, 10));
+  const PointState& failed = history.back();
+  EXPECT_TRUE(material.flows(failed.stress, failed.internal));
+  EXPECT_TRUE(material.has_flowed(failed.internal));
+  // Unloaded to the isotropic start: no flow now, but flowed before.
+  EXPECT_FALSE(material.flows(kIsotropic, failed.internal));
+  EXPECT_TRUE(material.has_flowed(failed.internal));
+}
+
 }  // namespace
 }  // namespace rktsph::perzyna_mohr_coulomb_test

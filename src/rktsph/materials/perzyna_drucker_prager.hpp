@@ -63,6 +63,12 @@ class PerzynaDruckerPrager final : public Material {
                          SymmetricTensor& strain_rate,
                          std::span<double> internal_rate) const override;
   bool flows(const SymmetricTensor& stress, std::span<const double> internal) const override;
+  /// eps_vp > 0: the zero-energy controls that follow flow keep a cell that has flowed at its
+  /// near-flow strength (docs/theory.md eqs. 3.10, 3.14) instead of restoring it whenever the
+  /// point drops below yield.
+  bool has_flowed(std::span<const double> internal) const override {
+    return internal[Internal::kEquivalentStrain] > 0.0;
+  }
   /// gamma/F0 [(3G + K M M_g + hardening) N x^(N-1) + K N x_t^(N-1)] (docs/theory.md eq. 1.15),
   /// x = F/F0 and x_t = F_t/F0 floored at kOverstressFloor; the cut-off term only where F_t > 0.
   double source_stiffness(const SymmetricTensor& stress,

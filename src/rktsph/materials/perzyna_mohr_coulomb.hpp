@@ -42,6 +42,12 @@ class PerzynaMohrCoulomb final : public Material {
                          SymmetricTensor& strain_rate,
                          std::span<double> internal_rate) const override;
   bool flows(const SymmetricTensor& stress, std::span<const double> internal) const override;
+  /// eps_vp > 0: the zero-energy controls that follow flow keep a cell that has flowed at its
+  /// near-flow strength (docs/theory.md eqs. 3.10, 3.14) instead of restoring it whenever the
+  /// point drops below yield.
+  bool has_flowed(std::span<const double> internal) const override {
+    return internal[Internal::kEquivalentStrain] > 0.0;
+  }
   /// gamma/F0 times the largest row sum of |dF_a/dstress : D : dg_b/dstress| N x_b^(N-1) over
   /// the planes that flow (docs/theory.md eq. 1.18): exact on a face, a bound at corners.
   double source_stiffness(const SymmetricTensor& stress,
