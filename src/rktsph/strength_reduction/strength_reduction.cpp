@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "rktsph/core/error.hpp"
+#include "rktsph/materials/material.hpp"
 #include "rktsph/output/json_writer.hpp"
 #include "rktsph/simulation/quantities.hpp"
 
@@ -55,15 +57,15 @@ Drainage slowest_drainage(const CaseDescription& description) {
   const PoreFluidSpec& fluid = *description.pore_fluid;
   const double permeability = fluid.hydraulic_conductivity / (fluid.density * fluid.gravity);
   const double storage = fluid.porosity / fluid.bulk_modulus;
+  const double alpha = fluid.biot_coefficient;
   Drainage drainage;
   drainage.coefficient = std::numeric_limits<double>::infinity();
   for (const auto& [name, block] : description.materials) {
     const auto young = block.values.find("young_modulus");
     const auto poisson = block.values.find("poisson_ratio");
     if (young == block.values.end() || poisson == block.values.end()) continue;
-    const double nu = poisson->second.value;
-    const double oedometric = young->second.value * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    const double alpha = fluid.biot_coefficient;
+    const double oedometric =
+        ElasticConstants{young->second.value, poisson->second.value}.constrained_modulus();
     drainage.coefficient =
         std::min(drainage.coefficient, permeability / (alpha * alpha / oedometric + storage));
   }

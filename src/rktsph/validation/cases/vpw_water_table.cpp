@@ -210,11 +210,6 @@ std::string report_water_table(ValidationReport& report, const std::filesystem::
 
 constexpr const char* kSlopeFolder = "vpw-water-table-slope";
 
-/// The material of the slope (its first shape's).
-const std::string& slope_material(const CaseDescription& description) {
-  return description.geometry.shapes.at(0).material;
-}
-
 /// The slope of the case as the limit-equilibrium reference sees it: the upper boundary of its
 /// polygon (the vertices above its lowest point, by x) as the ground, its lowest point as the
 /// rigid base, the weights of eq. 6.8 above and below the table, and u = alpha p_h (the model's
@@ -226,13 +221,11 @@ references::SlopeProfile slope_profile(const CaseDescription& description) {
     throw RunError(
         fmt::format("case {}: expected a polygon slope with a water table", kSlopeFolder));
   const PoreFluidSpec& fluid = *description.pore_fluid;
-  const std::string& material = slope_material(description);
+  const std::string& material = shape.material;
   const double gravity = downward_gravity(description);
   const double density = material_parameter(description, material, "density");
   references::SlopeProfile profile;
-  profile.base = 1e300;
-  for (const Vec3& vertex : shape.vertices)
-    profile.base = std::min(profile.base, vertex[1]);
+  profile.base = std::ranges::min(shape.vertices, {}, [](const Vec3& v) { return v[1]; })[1];
   for (const Vec3& vertex : shape.vertices)
     if (vertex[1] > profile.base) profile.ground.push_back({vertex[0], vertex[1]});
   std::sort(profile.ground.begin(), profile.ground.end());
