@@ -11,6 +11,7 @@ class LinearElastic final : public Material {
   LinearElastic(double density, ElasticConstants elastic) : Material(density, elastic) {}
   static std::unique_ptr<Material> from_parameters(ParameterReader& reader);
   std::string model_name() const override { return "linear_elastic"; }
+  bool has_flowed(std::span<const double> /*internal*/) const override { return false; }
 };
 
 /// Reads density, young_modulus and poisson_ratio (shared by every material).

@@ -85,11 +85,10 @@ class Material {
 
   /// True if a point with these internal variables has flowed at some time (its equivalent
   /// viscoplastic strain is above 0): the cells' hourglass strength follows it (docs/theory.md
-  /// eq. 3.10). Elastic materials never have.
-  virtual bool has_flowed(std::span<const double> internal) const {
-    (void)internal;
-    return false;
-  }
+  /// eq. 3.10). Every material says it itself, elastic ones false: a default of false let
+  /// Drucker-Prager and Mohr-Coulomb forget their flow, which the zero-energy controls then
+  /// switched on and off at yield (theory §3.4, after eq. 3.10).
+  virtual bool has_flowed(std::span<const double> internal) const = 0;
 
   /// The largest mean stress p = tr(stress)/3 the material carries [Pa] (tension positive): a
   /// stress update that ends above it is returned onto it (docs/theory.md §1.7). +infinity: no
