@@ -96,7 +96,7 @@ EnergyTotals settled_column(double spacing) {
 // and the damping took the other half. The residual `dissipated` is the discretisation's: the
 // nodal quadrature of the boundary rows (full volumes dx^2) against the corrective gradients of
 // the momentum balance, first order in dx / H; it halves with dx.
-TEST(EnergyBudget, DampedColumnStoresHalfTheWorkOfGravity) {
+TEST(EnergyBudgetSlow, DampedColumnStoresHalfTheWorkOfGravity) {
   const double modulus = 1.0e7 * 0.7 / (1.3 * 0.4), rho_g = 2000.0 * 9.81, height = 4.0;
   double residual[2] = {};
   int k = 0;

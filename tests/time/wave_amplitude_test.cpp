@@ -174,7 +174,7 @@ std::pair<Measured, Measured> check_both_updates(Bar bar) {
   return {half, mean};
 }
 
-TEST(WaveAmplitude, FacesKeepThePlateauAndTheDefaultIsAsCloseAsTheHalfStepUpdateWithViscosity) {
+TEST(WaveAmplitudeSlow, FacesKeepThePlateauAndTheDefaultIsAsCloseAsTheHalfStepUpdateWithViscosity) {
   // A cheap subset of the slow test below: 60 cells; the limit along x in plane strain, C = 0.25
   // along y in plane stress; with and without the viscosity.
   for (double viscosity : {0.0, 0.25}) {

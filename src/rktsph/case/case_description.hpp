@@ -56,11 +56,17 @@ enum class CellLayout {
 };
 
 struct GeometrySpec {
-  double spacing = 0.0;  ///< lattice spacing dx, or the triangles' longest edge [m], > 0
+  /// Lattice spacing dx, or the triangles' longest edge [m], > 0; with `mesh`, the mesh's longest
+  /// edge, set when the mesh is read (0 until then).
+  double spacing = 0.0;
   CellLayout cells = CellLayout::Lattice;
   /// Shapes fill one common lattice (or mesh); where shapes overlap, the later shape's material
-  /// wins (so a small shape after a large one makes a weak zone).
+  /// wins (so a small shape after a large one makes a weak zone). Empty with `mesh`.
   std::vector<ShapeSpec> shapes;
+  /// A Gmsh mesh file instead of shapes (docs/theory.md §3.8): its path, relative paths resolved
+  /// against the case file's folder; empty with shapes.
+  std::string mesh;
+  SourceLocation mesh_where;  ///< of the `mesh` key
   SourceLocation where;
 };
 

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "rktsph/core/axes.hpp"
+#include "rktsph/geometry/triangle_node_sets.hpp"
 #include "rktsph/mesh/cell_geometry.hpp"
 
 namespace rktsph {
@@ -172,6 +173,12 @@ struct Lattice {
 
 NodeEstimate estimate_node_sets(const GeometrySpec& geometry, int dimension) {
   NodeEstimate estimate;
+  if (!geometry.mesh.empty()) {  // a mesh file: its own counts (§3.8)
+    const MeshFileSize size = mesh_file_size(geometry);
+    estimate.sph_nodes = estimate.largest_shape_nodes = static_cast<double>(size.nodes);
+    estimate.stress_points = static_cast<double>(size.triangles);
+    return estimate;
+  }
   const double dx = geometry.spacing;
   const bool triangles = geometry.cells == CellLayout::Triangles && dimension >= 2;
   // Triangles: near-equilateral ones of edge a = kTriangleEdgeFraction dx (measured, §3.6), each

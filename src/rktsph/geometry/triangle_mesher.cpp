@@ -21,6 +21,7 @@
 #include <utility>
 
 #include "rktsph/geometry/shapes.hpp"
+#include "rktsph/geometry/triangle_node_sets.hpp"
 #include "rktsph/mesh/cell_geometry.hpp"
 
 namespace rktsph {
@@ -484,56 +485,27 @@ NodeSets build_triangle_node_sets(const GeometrySpec& geometry,
   for (std::size_t i = 0; i < corners.size(); ++i)
     node_of[corners[i]] = static_cast<std::int32_t>(i);
 
-  // Triangles: corners counter-clockwise (as CGAL keeps them) from the lowest-numbered one, in
-  // the order of their corner numbers.
-  struct Triangle {
-    std::array<std::int32_t, 3> corners;
-    std::int32_t material;
-  };
-  std::vector<Triangle> triangles;
+  // Triangles: corners counter-clockwise, as CGAL keeps them (triangle_node_sets orders them).
+  std::vector<MeshTriangle> triangles;
   triangles.reserve(kept.size());
-  for (const auto& [face, material] : kept) {
-    std::array<std::int32_t, 3> c{node_of.at(face->vertex(0)), node_of.at(face->vertex(1)),
-                                  node_of.at(face->vertex(2))};
-    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
-    triangles.push_back({c, material});
-  }
-  std::sort(triangles.begin(), triangles.end(),
-            [](const Triangle& a, const Triangle& b) { return a.corners < b.corners; });
+  for (const auto& [face, material] : kept)
+    triangles.push_back(
+        {{node_of.at(face->vertex(0)), node_of.at(face->vertex(1)), node_of.at(face->vertex(2))},
+         material});
 
-  NodeSets nodes;
-  nodes.dimension = 2;
-  nodes.spacing = h;
-  nodes.layout = CellLayout::Triangles;
-  nodes.material_names = material_names;
-  nodes.sph_nodes.dimension = 2;
-  nodes.stress_points.dimension = 2;
+  std::vector<Vec3> points;
+  std::vector<std::int32_t> node_material;
+  points.reserve(corners.size());
   for (const Vertex& vertex : corners) {
     const Vec3 x{vertex->point().x(), vertex->point().y(), 0.0};
-    nodes.sph_nodes.push_back(x, 0.0);
+    points.push_back(x);
     const int shape = covering_shape(geometry, 2, x, tolerance);
     // A corner is in its triangles, so a shape covers it; -1 only if rounding put it a hair
-    // outside, when the material of its first triangle stands in (filled in below).
-    nodes.node_material.push_back(shape >= 0 ? shape_material(geometry, shape, material_names)
-                                             : -1);
+    // outside, when the material of its first triangle stands in.
+    node_material.push_back(shape >= 0 ? shape_material(geometry, shape, material_names) : -1);
   }
-  // Stress points at the centroids, with the triangle's area; each node gets a third of the area
-  // of each of its triangles (lumped, so the node volumes add up to the body's area, §3.6).
-  nodes.cells = CellComplex(2, nodes.sph_nodes.size());
-  const PointCloud& points = nodes.sph_nodes;
-  for (const Triangle& triangle : triangles) {
-    const CellCorners c = gather_corners(points, triangle.corners);
-    const double area = cell_measure(CellKind::Triangle, c);
-    nodes.stress_points.push_back(cell_centroid(CellKind::Triangle, c), area);
-    for (const std::int32_t node : triangle.corners) {
-      nodes.sph_nodes.volume[static_cast<std::size_t>(node)] += area / 3.0;
-      if (nodes.node_material[static_cast<std::size_t>(node)] < 0)
-        nodes.node_material[static_cast<std::size_t>(node)] = triangle.material;
-    }
-    nodes.cells.add_cell(CellKind::Triangle, triangle.corners, triangle.material);
-  }
-  nodes.cells.finish(nodes.sph_nodes);
-  nodes.outline = Outline(nodes.cells, nodes.sph_nodes);
+  NodeSets nodes =
+      triangle_node_sets(points, std::move(node_material), std::move(triangles), h, material_names);
   check_cells(nodes, geometry);
   return nodes;
 }

@@ -8,6 +8,7 @@
 
 #include "rktsph/case/computed_defaults.hpp"
 #include "rktsph/geometry/triangle_mesher.hpp"
+#include "rktsph/geometry/triangle_node_sets.hpp"
 #include "rktsph/materials/material_factory.hpp"
 #include "rktsph/mesh/cell_geometry.hpp"
 #include "rktsph/models/saturated_vpw.hpp"
@@ -87,6 +88,13 @@ NodeEstimate checked_node_estimate(const CaseDescription& description,
   const double lattice_limit = 16.0 * limits.max_nodes;
   if (estimate.sph_nodes <= limits.max_nodes && estimate.lattice_points <= lattice_limit)
     return estimate;
+  if (!geometry.mesh.empty())
+    throw InputError(geometry.mesh_where, "geometry.mesh", geometry.mesh,
+                     fmt::format("the mesh has {:.0f} SPH nodes, about {:.3g} GB of memory, above "
+                                 "the limit of {:.3g} nodes",
+                                 estimate.sph_nodes, memory * 1e-9, limits.max_nodes),
+                     "a coarser mesh; to run it anyway, raise the limit with --max-nodes N (run "
+                     "and check)");
   const ShapeSpec& largest = geometry.shapes[estimate.largest_shape];
   const std::string problem =
       estimate.sph_nodes > limits.max_nodes
@@ -309,9 +317,15 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
   for (const auto& entry : description_.materials)
     material_names.push_back(entry.first);
   // The cells the case asks for (docs/theory.md §3.1, §3.6): both builders fill the same NodeSets.
-  nodes_ = description_.geometry.cells == CellLayout::Triangles
-               ? build_triangle_node_sets(description_.geometry, material_names)
-               : build_node_sets(description_.geometry, description_.dimension, material_names);
+  // A mesh file brings its own triangles and spacing (§3.8).
+  if (!description_.geometry.mesh.empty()) {
+    nodes_ = build_mesh_node_sets(description_.geometry, material_names);
+    description_.geometry.spacing = nodes_.spacing;
+  } else {
+    nodes_ = description_.geometry.cells == CellLayout::Triangles
+                 ? build_triangle_node_sets(description_.geometry, material_names)
+                 : build_node_sets(description_.geometry, description_.dimension, material_names);
+  }
   groups_ = select_groups(nodes_, description_.groups);
 
   const NumericsSpec& numerics = description_.numerics;

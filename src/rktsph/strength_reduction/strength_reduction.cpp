@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "rktsph/core/error.hpp"
+#include "rktsph/geometry/gmsh_mesh.hpp"
 #include "rktsph/materials/material.hpp"
 #include "rktsph/output/json_writer.hpp"
 #include "rktsph/simulation/quantities.hpp"
@@ -74,6 +75,12 @@ Drainage slowest_drainage(const CaseDescription& description) {
     for (const Vec3& vertex : shape.vertices) {
       low = std::min(low, vertex[1]);
       high = std::max(high, vertex[1]);
+    }
+  if (!description.geometry.mesh.empty())
+    for (const auto& point :
+         read_gmsh_mesh(description.geometry.mesh, description.geometry.mesh_where).points) {
+      low = std::min(low, point[1]);
+      high = std::max(high, point[1]);
     }
   drainage.height = high - low;
   return drainage;

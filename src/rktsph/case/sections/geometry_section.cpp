@@ -2,6 +2,9 @@
 // (docs/input-reference.md, "geometry").
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <filesystem>
+
 #include "rktsph/case/sections/sections.hpp"
 #include "rktsph/case/sections/value_readers.hpp"
 
@@ -136,20 +139,86 @@ Key<GeometrySpec> cells_key() {
   return key;
 }
 
+// The spacing: required with shapes; with a mesh file it is the mesh's own (its longest edge),
+// so it is neither given nor written back.
+Key<GeometrySpec> spacing_key() {
+  Key<GeometrySpec> key = number_key<GeometrySpec>(
+      "spacing", &GeometrySpec::spacing, NumberRange::positive(), "m",
+      "Lattice spacing dx; with cells: triangles, the longest edge; not given with mesh (the "
+      "mesh's longest edge).");
+  key.default_value = "required with shapes";
+  const auto emit_number = key.emit;
+  key.emit = [emit_number](YAML::Emitter& out, const GeometrySpec& geometry,
+                           const CaseDescription& description) {
+    if (geometry.mesh.empty()) emit_number(out, geometry, description);
+  };
+  return key;
+}
+
+// A Gmsh mesh file instead of shapes (docs/theory.md §3.8). The path is resolved against the case
+// file's folder when read, and written back resolved, so that the copy of the case in a run's
+// folder names the same file.
+Key<GeometrySpec> mesh_key() {
+  return section_key<GeometrySpec>(
+      "mesh", "text", "none", "a Gmsh .msh file (MSH 2.2 or 4.1, ASCII) of 3-node triangles",
+      "Instead of shapes: the triangles of a Gmsh mesh, each of the material its physical surface "
+      "names; a path relative to the case file's folder.",
+      [](const YamlNode& node, GeometrySpec& geometry, Reading& reading) {
+        const std::string text = to_text(node);
+        if (text.empty()) fail_at(node, "the mesh file's path is empty", "a path to a .msh file");
+        std::filesystem::path path(text);
+        if (path.is_relative() && !reading.so_far.file.empty())
+          path = std::filesystem::path(reading.so_far.file).parent_path() / path;
+        geometry.mesh = path.lexically_normal().string();
+        geometry.mesh_where = node.where;
+      },
+      [](YAML::Emitter& out, const GeometrySpec& geometry, const CaseDescription&) {
+        if (geometry.mesh.empty()) return;
+        out << YAML::Key << "mesh" << YAML::Value
+            << std::filesystem::absolute(geometry.mesh).lexically_normal().string();
+      });
+}
+
+const KeyTable<GeometrySpec>& geometry_keys();
+
+/// Shapes or a mesh, and what each asks of the other keys.
+void check_shapes_or_mesh(const YamlNode& node, GeometrySpec& geometry, Reading& reading) {
+  const YamlMap map(node);
+  map.require_one_of({"shapes", "mesh"});
+  if (geometry.mesh.empty()) {
+    // A misspelt spacing is reported as such by read_keys; not again as missing.
+    const std::vector<std::string> known = key_names(geometry_keys());
+    const bool misspelt =
+        std::any_of(node.children.begin(), node.children.end(), [&](const YamlNode& child) {
+          return std::find(known.begin(), known.end(), child.key) == known.end();
+        });
+    if (!misspelt) map.require("spacing");
+    return;
+  }
+  if (const YamlNode* spacing = map.find("spacing"))
+    fail_at(*spacing, "a mesh file brings its own spacing (its longest edge)",
+            "no spacing with mesh; refine the mesh in Gmsh instead");
+  if (const YamlNode* cells = map.find("cells"); cells && geometry.cells != CellLayout::Triangles)
+    fail_at(*cells, "a mesh file holds triangles", "cells: triangles, or no cells key with mesh");
+  if (reading.so_far.dimension != 2)
+    fail_at(*map.find("mesh"), "a mesh file is read in 2D cases only", "dimension: 2");
+  geometry.cells = CellLayout::Triangles;
+}
+
 const KeyTable<GeometrySpec>& geometry_keys() {
   static const KeyTable<GeometrySpec> keys = {
-      number_key<GeometrySpec>("spacing", &GeometrySpec::spacing, NumberRange::positive(), "m",
-                               "Lattice spacing dx; with cells: triangles, the longest edge.",
-                               true),
+      spacing_key(),
       cells_key(),
+      mesh_key(),
       section_key<GeometrySpec>(
-          "shapes", "list", "required", "≥ 1 item",
+          "shapes", "list", "required without mesh", "≥ 1 item",
           "The shapes, in order; where they overlap, the later shape's material wins.",
           [](const YamlNode& node, GeometrySpec& geometry, Reading& reading) {
             for (const YamlNode& item : to_sequence(node, 1))
               reading.errors.attempt([&] { geometry.shapes.push_back(read_shape(item, reading)); });
           },
           [](YAML::Emitter& out, const GeometrySpec& geometry, const CaseDescription& description) {
+            if (geometry.shapes.empty()) return;  // a mesh file instead
             out << YAML::Key << "shapes" << YAML::Value << YAML::BeginSeq;
             for (const ShapeSpec& shape : geometry.shapes) {
               out << YAML::BeginMap;
@@ -166,10 +235,12 @@ const KeyTable<GeometrySpec>& geometry_keys() {
 
 Key<CaseDescription> geometry_section() {
   return section_key<CaseDescription>(
-      "geometry", "map", "required", "", "The lattice and the shapes it fills.",
+      "geometry", "map", "required", "",
+      "The cells: a lattice or triangles filling shapes, or a mesh file.",
       [](const YamlNode& node, CaseDescription& description, Reading& reading) {
         description.geometry.where = YamlMap(node).where();
         read_keys(node, geometry_keys(), description.geometry, reading);
+        reading.errors.attempt([&] { check_shapes_or_mesh(node, description.geometry, reading); });
       },
       [](YAML::Emitter& out, const CaseDescription& description, const CaseDescription&) {
         out << YAML::Key << "geometry" << YAML::Value << YAML::BeginMap;
