@@ -3,6 +3,8 @@
 own folder and of the folders below it in LAYERS, never of a folder above. Exits 1 and names every
 offending include; `--self-test` checks that the rule catches a violation in a made-up tree.
 
+The step, its controls and the physics seam (SCHEMA_FREE) do not include the case schema either.
+
 Usage: check_layering.py SRC_DIR        (SRC_DIR is the directory holding rktsph/)
        check_layering.py --self-test
 """
@@ -32,6 +34,10 @@ LAYERS = [
     "validation",     # references and case checks (its own library)
 ]
 
+# Folders above `case` that must still not read the case schema: the step, its controls and the
+# seam between them and the models take plain values (README "Layout").
+SCHEMA_FREE = ["physics", "stabilisation", "time"]
+
 INCLUDE = re.compile(r'^\s*#\s*include\s*"rktsph/([a-z_]+)/')
 
 
@@ -55,6 +61,8 @@ def violations(src: pathlib.Path):
                 found.append(f"{path}:{number}: includes unknown folder '{target}'")
             elif rank[target] > rank[folder]:
                 found.append(f"{path}:{number}: layer '{folder}' includes higher layer '{target}'")
+            elif target == "case" and folder in SCHEMA_FREE:
+                found.append(f"{path}:{number}: layer '{folder}' reads the case schema")
     return found
 
 
@@ -70,6 +78,12 @@ def self_test() -> int:
         (root / "core" / "a.hpp").write_text('#include "rktsph/time/step.hpp"\n')
         if len(violations(pathlib.Path(tmp))) != 1:
             print("self-test: an upward include was not reported")
+            return 1
+        (root / "core" / "a.hpp").write_text("")
+        (root / "case").mkdir()
+        (root / "time" / "step.hpp").write_text('#include "rktsph/case/spec.hpp"\n')
+        if len(violations(pathlib.Path(tmp))) != 1:
+            print("self-test: the step reading the case schema was not reported")
             return 1
     print("self-test passed")
     return 0

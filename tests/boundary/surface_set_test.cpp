@@ -159,8 +159,8 @@ time: {end: 0.01}
 
 TEST(SurfaceSet, ConditionsOnATiltedSurfaceMakeItTractionFree) {
   Simulation simulation(read_case_text(kBlock, "block.yaml"));
-  BoundaryConditions conditions(simulation.description(), simulation.nodes(), simulation.groups(),
-                                simulation.model());
+  BoundaryConditions conditions(simulation.description().boundary_conditions, simulation.nodes(),
+                                simulation.groups(), simulation.model());
   const std::int32_t free_node = test::lattice_node(simulation.nodes(), 4, 1);
   const std::int32_t fixed_node = test::lattice_node(simulation.nodes(), 0, 1);
   const double c30 = std::cos(std::numbers::pi / 6.0), s30 = std::sin(std::numbers::pi / 6.0);

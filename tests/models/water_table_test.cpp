@@ -74,16 +74,12 @@ int internal_index(const Simulation& simulation, const std::string& name) {
 }
 
 TEST(WaterTable, HeightAndSlopeOfALevelAndOfAPolyline) {
-  WaterTableSpec level;
-  level.level = 3.0;
-  const WaterTable flat(level);
+  const WaterTable flat = WaterTable::level(3.0);
   EXPECT_EQ(flat.height(-100.0), 3.0);
   EXPECT_EQ(flat.slope(7.0), 0.0);
   EXPECT_EQ(flat.depth_below(1.0, 1.0), 2.0);
   EXPECT_EQ(flat.depth_below(1.0, 4.0), 0.0);
-  WaterTableSpec line;
-  line.polyline = {{0.0, 8.0}, {20.0, 8.0}, {40.0, 2.0}};
-  const WaterTable polyline(line);
+  const WaterTable polyline = WaterTable::polyline({{0.0, 8.0}, {20.0, 8.0}, {40.0, 2.0}});
   EXPECT_EQ(polyline.height(-5.0), 8.0);  // constant beyond the ends
   EXPECT_EQ(polyline.height(50.0), 2.0);
   EXPECT_DOUBLE_EQ(polyline.height(30.0), 5.0);

@@ -8,7 +8,6 @@
 #include <optional>
 
 #include "rktsph/core/axes.hpp"
-#include "rktsph/physics/water_table.hpp"
 
 namespace rktsph {
 
@@ -162,8 +161,8 @@ std::optional<TimeFunction> imposed_velocity(const BoundaryConditionSpec& condit
 
 /// The reader refuses these too; checked again for descriptions built in code, since a zero rate
 /// would give the compiled harmonic an infinite period.
-void check_rotations(const CaseDescription& description, int dimension) {
-  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+void check_rotations(std::span<const BoundaryConditionSpec> conditions, int dimension) {
+  for (const BoundaryConditionSpec& condition : conditions) {
     if (condition.kind != BoundaryConditionSpec::Kind::Rotation) continue;
     if (dimension != 2)
       throw InputError(condition.where, "boundary_conditions.rotation", "",
@@ -182,11 +181,10 @@ void check_rotations(const CaseDescription& description, int dimension) {
 /// as a roller and a fixed base meeting at a corner, both impose zero and are accepted.
 /// Returns, per node and axis, the index of the first condition imposing that velocity (or -1).
 std::vector<int> refuse_conflicting_velocities(
-    const CaseDescription& description, const NodeSets& nodes,
+    std::span<const BoundaryConditionSpec> conditions, const NodeSets& nodes,
     const std::map<std::string, std::vector<std::int32_t>>& groups) {
   const int d = nodes.dimension;
   std::vector<int> owner(nodes.sph_nodes.size() * static_cast<std::size_t>(d), -1);
-  const auto& conditions = description.boundary_conditions;
   for (std::size_t k = 0; k < conditions.size(); ++k) {
     const auto found = groups.find(conditions[k].group);
     if (found == groups.end()) continue;  // reported where the conditions are compiled
@@ -216,14 +214,14 @@ int BoundaryConditions::add_function(const TimeFunction& f) {
 }
 
 BoundaryConditions::BoundaryConditions(
-    const CaseDescription& description, const NodeSets& nodes,
+    std::span<const BoundaryConditionSpec> conditions, const NodeSets& nodes,
     const std::map<std::string, std::vector<std::int32_t>>& groups, const PhysicsModel& model)
     : nodes_(nodes) {
   const int d = nodes.dimension;
   const std::size_t n = nodes.sph_nodes.size();
   const double tolerance = 1e-6 * nodes.spacing;
-  check_rotations(description, d);
-  const std::vector<int> velocity_owner = refuse_conflicting_velocities(description, nodes, groups);
+  check_rotations(conditions, d);
+  const std::vector<int> velocity_owner = refuse_conflicting_velocities(conditions, nodes, groups);
   dimension_ = d;
   for (int a = 0; a < 3; ++a)
     for (int c = 0; c < 3; ++c)
@@ -235,7 +233,7 @@ BoundaryConditions::BoundaryConditions(
 
   // Mirror planes first: they decide which faces of the outline are real faces.
   std::vector<std::pair<int, std::int32_t>> rollers;  // (axis, node)
-  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+  for (const BoundaryConditionSpec& condition : conditions) {
     if (condition.kind != BoundaryConditionSpec::Kind::Roller) continue;
     const auto& members = group_nodes(groups, condition);
     const int axis = condition.axis;
@@ -281,7 +279,7 @@ BoundaryConditions::BoundaryConditions(
   driven_normals_.assign(n, {});
   for (const auto& [axis, node] : rollers)
     velocity_axes_[node] |= static_cast<std::uint8_t>(1u << axis);
-  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+  for (const BoundaryConditionSpec& condition : conditions) {
     const auto& members = group_nodes(groups, condition);
     std::uint8_t axes = 0;
     if (condition.kind == BoundaryConditionSpec::Kind::Fixed ||
@@ -312,7 +310,7 @@ BoundaryConditions::BoundaryConditions(
         if (field >= 0) roller_shear_.push_back({node, field, zero, 1.0});
       }
 
-  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+  for (const BoundaryConditionSpec& condition : conditions) {
     if (condition.kind != BoundaryConditionSpec::Kind::Traction) continue;
     const auto& members = group_nodes(groups, condition);
     // The face the traction acts on: the outward normal shared by every node of the group.
@@ -331,8 +329,7 @@ BoundaryConditions::BoundaryConditions(
       for (std::int32_t node : members) {
         const int owner = velocity_owner[static_cast<std::size_t>(node) * d + c];
         if (owner >= 0 && driven(node, common.front()) && ((velocity_axes_[node] >> c) & 1u))
-          refuse_conflict(description.boundary_conditions[static_cast<std::size_t>(owner)],
-                          condition, nodes, node, c,
+          refuse_conflict(conditions[static_cast<std::size_t>(owner)], condition, nodes, node, c,
                           "a traction and an imposed velocity act on the same face along");
       }
       function[static_cast<std::size_t>(c)] = add_function(*condition.traction[c]);
@@ -358,7 +355,7 @@ BoundaryConditions::BoundaryConditions(
   }
 
   // Drained faces: prescribed pore pressure (a Dirichlet row of the pressure solve too).
-  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+  for (const BoundaryConditionSpec& condition : conditions) {
     if (condition.kind != BoundaryConditionSpec::Kind::PorePressure) continue;
     const auto& members = group_nodes(groups, condition);
     const int function = add_function(*condition.pore_pressure);
@@ -374,8 +371,8 @@ BoundaryConditions::BoundaryConditions(
   // pressure held at 0, which makes the table itself the drained boundary of the saturated soil
   // below it. Below it, a free face (no velocity imposed on it) touches the free water of the
   // table, a submerged face or a pond: drained too. A drained face keeps its own value.
-  if (description.pore_fluid && description.pore_fluid->water_table) {
-    const WaterTable table(*description.pore_fluid->water_table);
+  if (const WaterTable* water_table = model.water_table()) {
+    const WaterTable& table = *water_table;
     std::vector<char> drained(n, 0), free_face(n, 0);
     for (std::int32_t node : drained_nodes_)
       drained[static_cast<std::size_t>(node)] = 1;
@@ -400,7 +397,7 @@ BoundaryConditions::BoundaryConditions(
   for (int a = 0; a < d; ++a)
     velocity_field_[static_cast<std::size_t>(a)] = model.velocity_field(a);
   contact_tolerance_ = 1e-6 * nodes.spacing;
-  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+  for (const BoundaryConditionSpec& condition : conditions) {
     if (condition.kind != BoundaryConditionSpec::Kind::RigidWall) continue;
     RigidWall wall;
     double length = 0.0;
@@ -421,7 +418,7 @@ BoundaryConditions::BoundaryConditions(
   // Velocities: rollers, then fixed and imposed in the order written.
   for (const auto& [axis, node] : rollers)
     velocity_constraints_.push_back({node, model.velocity_field(axis), zero, 1.0});
-  for (const BoundaryConditionSpec& condition : description.boundary_conditions) {
+  for (const BoundaryConditionSpec& condition : conditions) {
     const auto& members = group_nodes(groups, condition);
     if (condition.kind == BoundaryConditionSpec::Kind::Fixed) {
       for (std::int32_t node : members)

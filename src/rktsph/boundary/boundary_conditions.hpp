@@ -32,7 +32,7 @@ class BoundaryConditions {
  public:
   /// Validates the case's conditions against the groups and the cells (InputError at the
   /// condition's line on any inconsistency) and compiles them into per-node constraints.
-  BoundaryConditions(const CaseDescription& description, const NodeSets& nodes,
+  BoundaryConditions(std::span<const BoundaryConditionSpec> conditions, const NodeSets& nodes,
                      const std::map<std::string, std::vector<std::int32_t>>& groups,
                      const PhysicsModel& model);
 

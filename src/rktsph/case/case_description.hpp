@@ -16,6 +16,7 @@
 #include "rktsph/core/small_tensor.hpp"
 #include "rktsph/core/step_choices.hpp"
 #include "rktsph/core/time_function.hpp"
+#include "rktsph/linear_algebra/preconditioner.hpp"
 #include "rktsph/sph/kernel_type.hpp"
 
 namespace rktsph {
@@ -146,9 +147,6 @@ struct InitialConditionsSpec {
   std::optional<BendingModeSpec> bending_mode;
   SourceLocation where;
 };
-
-/// Preconditioner of the conjugate-gradient pore-pressure solve (docs/theory.md §6.7).
-enum class PressurePreconditioner { Jacobi, IncompleteCholesky, Multigrid };
 
 /// The case file's word for each preconditioner (`pore_fluid.preconditioner`), in documented order;
 /// summary.json reports the same words.

@@ -4,6 +4,9 @@
 
 namespace rktsph {
 
+/// Preconditioner of the conjugate-gradient pore-pressure solve (docs/theory.md §6.7).
+enum class PressurePreconditioner { Jacobi, IncompleteCholesky, Multigrid };
+
 class Preconditioner {
  public:
   virtual ~Preconditioner() = default;

@@ -70,13 +70,17 @@ std::unique_ptr<PhysicsModel> create_saturated_vpw(
     const CaseDescription& description, std::vector<std::unique_ptr<Material>> materials) {
   const PoreFluidSpec& fluid = *description.pore_fluid;
   // 1/Q = n/K_w (incompressible grains), k_bar = k/(rho_w g) (docs/theory.md §6.1).
-  const PoreFluid pore{fluid.biot_coefficient,
-                       fluid.porosity / fluid.bulk_modulus,
-                       fluid.hydraulic_conductivity / (fluid.density * fluid.gravity),
-                       fluid.density,
-                       fluid.porosity,
-                       fluid.water_table};
-  if (fluid.water_table) check_water_table_gravity(description);
+  PoreFluid pore{fluid.biot_coefficient,
+                 fluid.porosity / fluid.bulk_modulus,
+                 fluid.hydraulic_conductivity / (fluid.density * fluid.gravity),
+                 fluid.density,
+                 fluid.porosity,
+                 std::nullopt};
+  if (const auto& table = fluid.water_table) {
+    check_water_table_gravity(description);
+    pore.water_table = table->level ? WaterTable::level(*table->level, table->density_above)
+                                    : WaterTable::polyline(table->polyline, table->density_above);
+  }
   return std::make_unique<SaturatedVpw>(kinematics_of(description), std::move(materials),
                                         loads_of(description), integration_of(description.numerics),
                                         pore);
@@ -85,8 +89,12 @@ std::unique_ptr<PhysicsModel> create_saturated_vpw(
 std::unique_ptr<StepProjection> create_pressure_projection(
     const PhysicsModel& model, const NodeSets& nodes, const OperatorOptions& options,
     const BoundaryConditions& conditions, const CaseDescription& description, double dt) {
+  const PoreFluidSpec& fluid = *description.pore_fluid;
+  const PressureSolveOptions solve{fluid.projection_beta,       fluid.solver_tolerance,
+                                   fluid.solver_max_iterations, fluid.preconditioner,
+                                   fluid.laplacian_scale,       fluid.checkerboard_stabilisation};
   return std::make_unique<PressureProjection>(static_cast<const SaturatedVpw&>(model), nodes,
-                                              options, conditions, *description.pore_fluid, dt);
+                                              options, conditions, solve, dt);
 }
 
 }  // namespace

@@ -32,23 +32,23 @@ PressureProjection::~PressureProjection() = default;
 PressureProjection::PressureProjection(const SaturatedVpw& model, const NodeSets& nodes,
                                        const OperatorOptions& options,
                                        const BoundaryConditions& conditions,
-                                       const PoreFluidSpec& fluid, double dt)
+                                       const PressureSolveOptions& solve, double dt)
     : model_(model),
       nodes_(nodes),
       conditions_(conditions),
       alpha_(model.fluid().biot_coefficient),
       storage_(model.fluid().storage),
       permeability_(model.fluid().permeability),
-      beta_(fluid.projection_beta),
-      tolerance_(fluid.solver_tolerance),
-      checkerboard_theta_(fluid.checkerboard_stabilisation),
-      max_iterations_(fluid.solver_max_iterations),
-      preconditioner_(fluid.preconditioner),
+      beta_(solve.projection_beta),
+      tolerance_(solve.tolerance),
+      checkerboard_theta_(solve.checkerboard_theta),
+      max_iterations_(solve.max_iterations),
+      preconditioner_(solve.preconditioner),
       solvers_(std::make_unique<Solvers>()) {
   const auto start = std::chrono::steady_clock::now();
   const std::size_t n = nodes.sph_nodes.size();
   const int d = nodes.dimension;
-  build_operators(nodes, options, fluid);
+  build_operators(nodes, options, solve.laplacian_scale);
   density_.resize(n);
   for (std::size_t i = 0; i < n; ++i)
     density_[i] = model.material(nodes.node_material[i]).density();
@@ -75,13 +75,13 @@ PressureProjection::PressureProjection(const SaturatedVpw& model, const NodeSets
 }
 
 void PressureProjection::build_operators(const NodeSets& nodes, const OperatorOptions& options,
-                                         const PoreFluidSpec& fluid) {
+                                         double laplacian_scale) {
   // Off a lattice the Morris scale does not fit (docs/theory.md §6.3): the cells' P1 Laplacian and
   // the lumped cell gradient (eqs. 6.6, 6.7) take its place, and the lattice's checkerboard
   // stabilisation has nothing to act on (§6.6, refused on triangles at pore_fluid).
   if (!nodes.on_lattice()) {
     gradient_ = build_cell_node_gradient(nodes.cells, nodes.sph_nodes);
-    laplacian_ = build_cell_laplacian(nodes.cells, nodes.sph_nodes, fluid.laplacian_scale);
+    laplacian_ = build_cell_laplacian(nodes.cells, nodes.sph_nodes, laplacian_scale);
     statistics_.laplacian_scale = laplacian_.scale;
     return;
   }
@@ -95,8 +95,7 @@ void PressureProjection::build_operators(const NodeSets& nodes, const OperatorOp
         "corner), so the pressure solve has no stencil there; make every part of the soil at "
         "least two spacings wide",
         describe_point(nodes.sph_nodes, static_cast<std::size_t>(report.degenerate_rows.front()))));
-  laplacian_ =
-      build_laplacian(nodes.sph_nodes, cells, options, nodes.spacing, fluid.laplacian_scale);
+  laplacian_ = build_laplacian(nodes.sph_nodes, cells, options, nodes.spacing, laplacian_scale);
   statistics_.laplacian_scale = laplacian_.scale;
   checkerboard_rate_ = laplacian_checkerboard_rate(
       options.kernel, options.smoothing_length, nodes.spacing, nodes.dimension, laplacian_.scale);

@@ -23,7 +23,6 @@
 #include <vector>
 
 #include "rktsph/boundary/boundary_conditions.hpp"
-#include "rktsph/case/case_description.hpp"
 #include "rktsph/core/checkpoint.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/linear_algebra/conjugate_gradient.hpp"
@@ -47,11 +46,22 @@ struct SolverStatistics {
   double multigrid_complexity = 0.0;  ///< entries of all levels over those of the matrix
 };
 
+/// How the pore pressure is solved for (docs/theory.md §6.2-§6.7); the case's `pore_fluid` keys
+/// of the same names.
+struct PressureSolveOptions {
+  double projection_beta = 1.0;  ///< incremental projection (1) or not (0), §6.2
+  double tolerance = 1e-8;       ///< relative residual of the conjugate gradients
+  long max_iterations = 0;       ///< 0: twice the number of nodes
+  PressurePreconditioner preconditioner = PressurePreconditioner::Multigrid;
+  double laplacian_scale = 0.0;     ///< 0: the consistency scale (§6.3)
+  double checkerboard_theta = 0.0;  ///< theta of the checkerboard term, §6.6
+};
+
 class PressureProjection final : public StepProjection {
  public:
   PressureProjection(const SaturatedVpw& model, const NodeSets& nodes,
                      const OperatorOptions& options, const BoundaryConditions& conditions,
-                     const PoreFluidSpec& fluid, double dt);
+                     const PressureSolveOptions& solve, double dt);
   ~PressureProjection() override;
 
   void project(State& state, double time, double dt) override;
@@ -75,7 +85,7 @@ class PressureProjection final : public StepProjection {
   /// The gradient, the Laplacian and its checkerboard rate: from a radius search on a lattice
   /// (Morris, eq. 6.3), from the cells otherwise (eqs. 6.6, 6.7).
   void build_operators(const NodeSets& nodes, const OperatorOptions& options,
-                       const PoreFluidSpec& fluid);
+                       double laplacian_scale);
   void assemble(double dt);
   /// The entries of S (eq. 6.5) for this dt, every row and column; empty unless 2D and theta > 0.
   std::vector<Eigen::Triplet<double>> checkerboard_stabilisation(double dt) const;

@@ -13,7 +13,6 @@ SaturatedVpw::SaturatedVpw(Kinematics kinematics, std::vector<std::unique_ptr<Ma
       fluid_(fluid),
       internal_names_with_table_(DrySolid::internal_names()) {
   if (!fluid_.water_table) return;
-  water_table_.emplace(*fluid_.water_table);
   set_body_force_weights(DrySolid::internal_count());
   internal_names_with_table_.emplace_back("gravity_weight");
   if (dimension() == 2) internal_names_with_table_.emplace_back("seepage_weight");
@@ -31,20 +30,17 @@ std::array<double, 2> SaturatedVpw::body_force_weights(std::int32_t material, do
   // s = alpha rho_w y_w'/rho multiplies g_y along x; above it the soil weighs rho_above (eq. 6.8).
   const double density = this->material(material).density();
   const double alpha = fluid_.biot_coefficient, water = fluid_.fluid_density;
-  if (water_table_->depth_below(x, y) > 0.0)
-    return {(density - alpha * water) / density, alpha * water * water_table_->slope(x) / density};
-  PoreFluidSpec spec;
-  spec.density = water;
-  spec.porosity = fluid_.porosity;
-  spec.water_table = fluid_.water_table;
-  return {density_above_table(spec, density) / density, 0.0};
+  const WaterTable& table = *fluid_.water_table;
+  if (table.depth_below(x, y) > 0.0)
+    return {(density - alpha * water) / density, alpha * water * table.slope(x) / density};
+  return {table.density_above(density, fluid_.porosity, water) / density, 0.0};
 }
 
 void SaturatedVpw::place_water_table(const PointCloud& sph_nodes,
                                      std::span<const std::int32_t> node_material,
                                      std::span<const std::array<double, 2>> spans,
                                      FieldArray& internal) {
-  if (!water_table_) return;
+  if (!fluid_.water_table) return;
   const int d = dimension();
   const std::size_t n = node_material.size();
   const int weight = DrySolid::internal_count();
@@ -55,11 +51,11 @@ void SaturatedVpw::place_water_table(const PointCloud& sph_nodes,
     const double x = d == 2 ? sph_nodes.position[0][i] : 0.0;
     const double y = sph_nodes.position[static_cast<std::size_t>(d - 1)][i];
     hydrostatic_at_full_gravity_[i] =
-        fluid_.fluid_density * gravity * water_table_->depth_below(x, y);
+        fluid_.fluid_density * gravity * fluid_.water_table->depth_below(x, y);
     // The weights are the mean over the soil the node stands for, so that the weight of every
     // lattice row is exact wherever the table cuts the rows (a node on the table inside the body
     // is half wet, half dry; one on the table at the top surface is wet).
-    const double table = water_table_->height(x);
+    const double table = fluid_.water_table->height(x);
     const double low = spans[i][0], high = spans[i][1];
     const double wet_fraction =
         high > low ? std::clamp((table - low) / (high - low), 0.0, 1.0) : (y < table ? 1.0 : 0.0);

@@ -15,12 +15,12 @@ namespace rktsph {
 
 /// Pore-water constants of the mixture (docs/theory.md §6.1).
 struct PoreFluid {
-  double biot_coefficient = 1.0;  ///< alpha
-  double storage = 0.0;           ///< 1/Q = n/K_w [1/Pa] (incompressible grains)
-  double permeability = 0.0;      ///< k_bar = k / (rho_w g) [m^3 s/kg]
-  double fluid_density = 1000.0;  ///< rho_w
-  double porosity = 0.3;          ///< n, for the density of the soil above a water table
-  std::optional<WaterTableSpec> water_table;
+  double biot_coefficient = 1.0;          ///< alpha
+  double storage = 0.0;                   ///< 1/Q = n/K_w [1/Pa] (incompressible grains)
+  double permeability = 0.0;              ///< k_bar = k / (rho_w g) [m^3 s/kg]
+  double fluid_density = 1000.0;          ///< rho_w
+  double porosity = 0.3;                  ///< n, for the density of the soil above a water table
+  std::optional<WaterTable> water_table;  ///< none: fully saturated, p_w the excess only
 };
 
 class SaturatedVpw final : public DrySolid {
@@ -44,7 +44,6 @@ class SaturatedVpw final : public DrySolid {
   const std::vector<std::string>& internal_names() const override {
     return internal_names_with_table_;
   }
-  bool has_water_table() const override { return water_table_.has_value(); }
   double hydrostatic_pore_pressure(std::size_t node, double time) const override;
   /// Places the SPH nodes against the water table: p_h of each (eq. 6.6, at full gravity) and
   /// its body-force weights (eq. 6.8), the mean over the node's vertical span [low, high] (the
@@ -53,12 +52,12 @@ class SaturatedVpw final : public DrySolid {
                          std::span<const std::array<double, 2>> spans, FieldArray& internal);
   /// The soil's weights at (x, y) of material m: {w, s} of eq. 6.8.
   std::array<double, 2> body_force_weights(std::int32_t material, double x, double y) const;
-  /// y_w at x; only with a water table.
-  const std::optional<WaterTable>& water_table() const { return water_table_; }
+  const WaterTable* water_table() const override {
+    return fluid_.water_table ? &*fluid_.water_table : nullptr;
+  }
 
  private:
   PoreFluid fluid_;
-  std::optional<WaterTable> water_table_;
   std::vector<std::string> internal_names_with_table_;
   std::vector<double> hydrostatic_at_full_gravity_;  // p_h of each SPH node at factor 1 [Pa]
 };

@@ -16,6 +16,7 @@
 #include "rktsph/core/field_array.hpp"
 #include "rktsph/materials/material.hpp"
 #include "rktsph/physics/surface_normals.hpp"
+#include "rktsph/physics/water_table.hpp"
 #include "rktsph/sph/operators.hpp"
 
 namespace rktsph {
@@ -57,9 +58,10 @@ class PhysicsModel {
   /// Biot coefficient alpha of the saturated model (0 for a dry one): total stress
   /// sigma = sigma' - alpha p_w I.
   virtual double biot_coefficient() const { return 0.0; }
-  /// True if the pore pressure has a water table (docs/theory.md §6.8): the carried field is then
-  /// the excess over the hydrostatic p_h, and p_w = p_h + the field.
-  virtual bool has_water_table() const { return false; }
+  /// The water table of the pore pressure (docs/theory.md §6.8), or nullptr: with one the carried
+  /// field is the excess over the hydrostatic p_h, and p_w = p_h + the field.
+  virtual const WaterTable* water_table() const { return nullptr; }
+  bool has_water_table() const { return water_table() != nullptr; }
   /// p_h [Pa] at SPH node `node` and time `time` (eq. 6.6); 0 without a water table.
   virtual double hydrostatic_pore_pressure(std::size_t node, double time) const {
     (void)node, (void)time;

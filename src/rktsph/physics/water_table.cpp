@@ -1,14 +1,17 @@
 #include "rktsph/physics/water_table.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace rktsph {
 
-WaterTable::WaterTable(const WaterTableSpec& spec) {
-  if (spec.level)
-    vertices_ = {{0.0, *spec.level}};
-  else
-    vertices_ = spec.polyline;  // the reader checked: 2 or more vertices, x increasing
+WaterTable WaterTable::level(double height, std::optional<double> density_above) {
+  return WaterTable({{0.0, height}}, density_above);
+}
+
+WaterTable WaterTable::polyline(std::vector<std::array<double, 2>> vertices,
+                                std::optional<double> density_above) {
+  return WaterTable(std::move(vertices), density_above);
 }
 
 double WaterTable::height(double x) const {
@@ -36,10 +39,8 @@ double WaterTable::depth_below(double x, double y) const {
   return std::max(0.0, height(x) - y);
 }
 
-double density_above_table(const PoreFluidSpec& fluid, double density) {
-  if (fluid.water_table && fluid.water_table->density_above)
-    return *fluid.water_table->density_above;
-  return density - fluid.porosity * fluid.density;
+double WaterTable::density_above(double density, double porosity, double fluid_density) const {
+  return density_above_ ? *density_above_ : density - porosity * fluid_density;
 }
 
 }  // namespace rktsph

@@ -5,15 +5,18 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
-
-#include "rktsph/case/case_description.hpp"
 
 namespace rktsph {
 
 class WaterTable {
  public:
-  explicit WaterTable(const WaterTableSpec& spec);
+  /// A horizontal table at y_w = `height` [m].
+  static WaterTable level(double height, std::optional<double> density_above = {});
+  /// The polyline of vertices (x, y_w) [m], two or more with x increasing (the case reader checks).
+  static WaterTable polyline(std::vector<std::array<double, 2>> vertices,
+                             std::optional<double> density_above = {});
 
   /// y_w at horizontal coordinate x: the level, or the polyline (constant beyond its ends).
   double height(double x) const;
@@ -21,13 +24,16 @@ class WaterTable {
   double slope(double x) const;
   /// (y_w(x) - y)^+: the depth of the point (x, y) below the table [m].
   double depth_below(double x, double y) const;
+  /// The mass density that soil of mixture density `density` weighs above the table [kg/m^3]:
+  /// the case's `density_above`, or rho - n rho_w (its pores drained).
+  double density_above(double density, double porosity, double fluid_density) const;
 
  private:
-  std::vector<std::array<double, 2>> vertices_;  // one vertex (x unused) for a level
-};
+  WaterTable(std::vector<std::array<double, 2>> vertices, std::optional<double> density_above)
+      : vertices_(std::move(vertices)), density_above_(density_above) {}
 
-/// The mass density the soil of mixture density `density` weighs above the table: the case's
-/// `density_above`, or rho - n rho_w (its pores drained).
-double density_above_table(const PoreFluidSpec& fluid, double density);
+  std::vector<std::array<double, 2>> vertices_;  // one vertex (x unused) for a level
+  std::optional<double> density_above_;
+};
 
 }  // namespace rktsph

@@ -332,7 +332,8 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
   registered_ = &rktsph::registered_model(description_.model);
   model_ = registered_->create(description_, std::move(materials));
   check_wave_speeds(description_, *model_, material_names);
-  conditions_ = std::make_unique<BoundaryConditions>(description_, nodes_, groups_, *model_);
+  conditions_ = std::make_unique<BoundaryConditions>(description_.boundary_conditions, nodes_,
+                                                     groups_, *model_);
   // On a lattice the cells' width is dx; elsewhere the smallest cell sets the step (§2.5).
   courant_length_ =
       nodes_.on_lattice() ? nodes_.spacing : smallest_cell_width(nodes_.cells, nodes_.sph_nodes);

@@ -41,6 +41,14 @@ namespace rktsph::case_checks::vpw_water_table {
 
 namespace {
 
+/// The density the case gives the soil above its water table (docs/theory.md §6.8): its
+/// `density_above`, or rho - n rho_w, its pores drained.
+double case_density_above(const PoreFluidSpec& fluid, double density) {
+  if (fluid.water_table && fluid.water_table->density_above)
+    return *fluid.water_table->density_above;
+  return density - fluid.porosity * fluid.density;
+}
+
 constexpr const char* kFolder = "vpw-water-table";
 
 /// The layer of the case, read back from it.
@@ -95,7 +103,7 @@ Layer read_layer(const CaseDescription& description) {
   const PoreFluidSpec& fluid = *description.pore_fluid;
   Layer layer;
   layer.density = material_parameter(description, "soil", "density");
-  layer.density_above = density_above_table(fluid, layer.density);
+  layer.density_above = case_density_above(fluid, layer.density);
   layer.water_density = fluid.density;
   layer.biot = fluid.biot_coefficient;
   layer.poisson = material_parameter(description, "soil", "poisson_ratio");
@@ -235,7 +243,7 @@ references::SlopeProfile slope_profile(const CaseDescription& description) {
           fmt::format("case {}: the slope's ground is not a function of x (two vertices "
                       "at x = {} m)",
                       kSlopeFolder, profile.ground[i][0]));
-  profile.unit_weight_above = density_above_table(fluid, density) * gravity;
+  profile.unit_weight_above = case_density_above(fluid, density) * gravity;
   profile.unit_weight_below = density * gravity;
   profile.cohesion = material_parameter(description, material, "cohesion");
   profile.friction_angle = material_parameter(description, material, "friction_angle");
@@ -255,7 +263,7 @@ CaseDescription dry_slope(const CaseDescription& wet) {
   dry.model = ModelKind::DrySolid;
   for (auto& [name, block] : dry.materials) {
     Parameter& density = block.values.at("density");
-    density.value = density_above_table(*wet.pore_fluid, density.value);
+    density.value = case_density_above(*wet.pore_fluid, density.value);
   }
   dry.pore_fluid.reset();
   std::erase_if(dry.boundary_conditions, [](const BoundaryConditionSpec& condition) {
