@@ -72,17 +72,19 @@ $Elements
 $EndElements
 )";
 
-// The same square in MSH 4.1: the triangles name their surface entity, whose physical tag is in
-// $Entities.
+// The same square in MSH 4.1: the elements name their entity (the bottom curve, the surface),
+// whose physical tags are in $Entities.
 const char* kSquare41 = R"($MeshFormat
 4.1 0 8
 $EndMeshFormat
 $PhysicalNames
-1
+2
+1 2 "base"
 2 1 "soil"
 $EndPhysicalNames
 $Entities
-0 0 1 0
+0 1 1 0
+1 0 0 0 1 0 0 1 2 0
 1 0 0 0 1 1 0 1 1 0
 $EndEntities
 $Nodes
@@ -98,7 +100,9 @@ $Nodes
 0 1 0
 $EndNodes
 $Elements
-1 2 1 2
+2 3 2 5
+1 1 1 1
+5 1 2
 2 1 2 2
 3 1 2 3
 4 1 4 3
@@ -139,6 +143,9 @@ TEST(GmshMesh, ReadsBothFormatsTurnsClockwiseTrianglesAndLeavesOutPointsAndLines
     expect_square(nodes);
     for (std::size_t p = 0; p < 2; ++p)
       EXPECT_EQ(nodes.cells.material(p), 1);
+    // The physical groups: the bottom line's two nodes, the surface's four.
+    EXPECT_EQ(nodes.mesh_groups.at("base"), (std::vector<std::int32_t>{0, 1}));
+    EXPECT_EQ(nodes.mesh_groups.at("soil"), (std::vector<std::int32_t>{0, 1, 2, 3}));
   }
 }
 
@@ -323,13 +330,43 @@ TEST(GmshMesh, TheCaseRefusesASpacingShapesALatticeOrOneDimensionWithAMesh) {
   EXPECT_THROW(read_case_text(one_dimensional, "case.yaml"), InputError);
 }
 
+TEST(GmshMesh, GroupsSelectThePhysicalGroupsOfTheFileByName) {
+  const fs::path folder = scratch("groups");
+  write(folder / "square.msh", kSquare41);
+  const auto select = [&](const std::string& groups) {
+    const CaseDescription description =
+        read_case_text(mesh_case("  mesh: square.msh\n") + groups, (folder / "c.yaml").string());
+    const Simulation simulation(description);
+    return simulation.groups();
+  };
+  const auto groups = select("groups:\n  bottom: {physical: base}\n  body: {physical: soil}\n");
+  EXPECT_EQ(groups.at("bottom"), (std::vector<std::int32_t>{0, 1}));
+  EXPECT_EQ(groups.at("body").size(), 4u);
+  try {
+    select("groups:\n  top: {physical: crest}\n");
+    ADD_FAILURE() << "an unknown physical group was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("one of 'base', 'soil'"), std::string::npos)
+        << error.what();
+  }
+  // Without a mesh file a physical group means nothing.
+  EXPECT_THROW(read_case_text("name: m\ndimension: 2\ngeometry:\n  spacing: 0.5\n  shapes: "
+                              "[{rectangle: {min: [0, 0], max: [1, 1]}, material: soil}]\n"
+                              "materials:\n  soil: {model: linear_elastic, density: 2000, "
+                              "young_modulus: 1.0e8, poisson_ratio: 0.3}\ngroups:\n  b: "
+                              "{physical: base}\ntime: {end: 0.01}\n",
+                              "case.yaml"),
+               InputError);
+}
+
 // A two-layer column meshed by Gmsh (tests/data/meshes/two-layer-column.geo): sand (1700 kg/m3,
 // nu = 0.25) 2.5 m over clay (1900 kg/m3, nu = 0.3), rollers at the sides, a rough base, gravity
-// ramped in and damped to rest. Each layer is in uniaxial strain: sigma_v is the weight above,
-// sigma_h = K0 sigma_v with K0 = nu / (1 - nu) of the layer. Tolerances as
-// triangles-slope-elastic's (2 % on sigma_v, 3 % on K0) away from the interface: a node within one
-// spacing of it averages the strains of both layers (its stiffness jumps there), so there the check
-// is vertical equilibrium instead, the interface row's resultant against the sand's weight.
+// ramped in and damped to rest; the base is the file's physical curve "base". Each layer is in
+// uniaxial strain: sigma_v is the weight above, sigma_h = K0 sigma_v with K0 = nu / (1 - nu) of the
+// layer. Tolerances as triangles-slope-elastic's (2 % on sigma_v, 3 % on K0) away from the
+// interface: a node within one spacing of it averages the strains of both layers (its stiffness
+// jumps there), so there the check is vertical equilibrium instead, the interface row's resultant
+// against the sand's weight.
 TEST(GmshMeshSlow, TwoLayerColumnMeshedByGmshComesToRestUnderItsGeostaticStress) {
   const fs::path mesh = fs::path(RKTSPH_TEST_DATA_DIR) / "meshes" / "two-layer-column.msh";
   const std::string text = fmt::format(R"(name: column
@@ -340,10 +377,12 @@ geometry:
 materials:
   clay: {{model: linear_elastic, density: 1900.0, young_modulus: 3.0e7, poisson_ratio: 0.3}}
   sand: {{model: linear_elastic, density: 1700.0, young_modulus: 5.0e7, poisson_ratio: 0.25}}
+groups:
+  base: {{physical: base}}
 boundary_conditions:
   - {{group: xmin, roller: x}}
   - {{group: xmax, roller: x}}
-  - {{group: ymin, fixed: true}}
+  - {{group: base, fixed: true}}
 loads:
   gravity: {{acceleration: [0, -9.81], factor: {{function: ramp, value: 1, duration: 0.3}}}}
   damping: {{coefficient: 30}}

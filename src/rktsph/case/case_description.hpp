@@ -72,13 +72,14 @@ struct GeometrySpec {
 };
 
 struct GroupSpec {
-  enum class Kind { Edge, Box, Polygon, Point, All };
+  enum class Kind { Edge, Box, Polygon, Point, Physical, All };
   std::string name;
   Kind kind = Kind::All;
   std::string edge;   ///< Edge: "xmin", "xmax", "ymin" or "ymax" of the body's bounding box
   Vec3 min{}, max{};  ///< Box (inclusive, with a tolerance of 1e-6 dx)
   std::vector<Vec3> vertices;  ///< Polygon (boundary included)
   Vec3 point{};                ///< Point: the node nearest to it
+  std::string physical;        ///< Physical: a physical group's name in the mesh file
   SourceLocation where;
 };
 

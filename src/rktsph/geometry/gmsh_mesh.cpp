@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <span>
 #include <sstream>
 #include <string_view>
 #include <unordered_map>
@@ -151,8 +153,9 @@ class MeshText {
 /// What the sections hold before the triangles are tied to their nodes.
 struct RawMesh {
   int major_version = 0;
-  std::map<long, std::string> surface_names;              // physical tag (dimension 2) -> name
-  std::map<long, std::vector<long>> surface_physicals;    // 4.1: entity tag -> physical tags
+  std::map<std::pair<long, long>, std::string> names;  // (dimension, physical tag) -> name
+  // 4.1: (dimension, entity tag) -> its physical tags.
+  std::map<std::pair<long, long>, std::vector<long>> entity_physicals;
   std::unordered_map<long, std::array<double, 3>> nodes;  // tag -> position
   struct Element {
     std::array<long, 3> nodes;
@@ -160,6 +163,14 @@ struct RawMesh {
     int line;
   };
   std::vector<Element> triangles;
+  // The nodes of physical points and lines, by (dimension, physical tag).
+  std::map<std::pair<long, long>, std::vector<long>> tagged_nodes;
+
+  /// A physical group's name: its $PhysicalNames entry, else its tag as text.
+  std::string name_of(long dimension, long physical) const {
+    const auto found = names.find({dimension, physical});
+    return found != names.end() ? found->second : fmt::format("{}", physical);
+  }
 };
 
 /// A line of four integers: the section and block headers of MSH 4.1, `what` naming them.
@@ -202,7 +213,7 @@ void read_physical_names(MeshText& text, RawMesh& mesh) {
       name += (t > 2 ? " " : "") + std::string(tokens[t]);
     if (name.size() < 2 || name.front() != '"' || name.back() != '"')
       text.fail("a physical name is written in double quotes", "dimension tag \"name\"");
-    if (dimension == 2) mesh.surface_names[tag] = name.substr(1, name.size() - 2);
+    mesh.names[{dimension, tag}] = name.substr(1, name.size() - 2);
   }
   text.skip_section("PhysicalNames");
 }
@@ -211,22 +222,23 @@ void read_physical_names(MeshText& text, RawMesh& mesh) {
 void read_entities(MeshText& text, RawMesh& mesh) {
   const auto counts = text.next_line("the numbers of entities");
   text.need(counts, 4, "$Entities (points, curves, surfaces, volumes)");
-  const long points = text.integer(counts[0], "the number of points");
-  const long curves = text.integer(counts[1], "the number of curves");
-  const long surfaces = text.integer(counts[2], "the number of surfaces");
-  for (long k = 0; k < points + curves; ++k)
-    text.next_line("a point or curve entity");
-  for (long k = 0; k < surfaces; ++k) {
-    const auto tokens = text.next_line("a surface entity");
-    // tag, min x y z, max x y z, number of physical tags, the tags, bounding curves.
-    text.need(tokens, 8, "a surface entity");
-    const long tag = text.integer(tokens[0], "the surface's tag");
-    const long physicals = text.integer(tokens[7], "the number of physical tags");
-    if (physicals < 0 || tokens.size() < 8 + static_cast<std::size_t>(physicals))
-      text.fail("the surface entity lists fewer physical tags than it says", "a Gmsh 4.1 mesh");
-    std::vector<long>& list = mesh.surface_physicals[tag];
-    for (long p = 0; p < physicals; ++p)
-      list.push_back(text.integer(tokens[8 + static_cast<std::size_t>(p)], "a physical tag"));
+  // A point is "tag x y z", a curve or surface "tag min-x y z max-x y z"; then the number of
+  // physical tags and the tags (then bounding entities, not needed).
+  for (long dimension = 0; dimension < 3; ++dimension) {
+    const long count = text.integer(counts[static_cast<std::size_t>(dimension)], "an entity count");
+    const std::size_t at = dimension == 0 ? 4 : 7;
+    for (long k = 0; k < count; ++k) {
+      const auto tokens = text.next_line("an entity");
+      text.need(tokens, at + 1, "an entity (tag, bounds, number of physical tags)");
+      const long tag = text.integer(tokens[0], "the entity's tag");
+      const long physicals = text.integer(tokens[at], "the number of physical tags");
+      if (physicals < 0 || tokens.size() < at + 1 + static_cast<std::size_t>(physicals))
+        text.fail("the entity lists fewer physical tags than it says", "a Gmsh 4.1 mesh");
+      std::vector<long>& list = mesh.entity_physicals[{dimension, tag}];
+      for (long p = 0; p < physicals; ++p)
+        list.push_back(
+            text.integer(tokens[at + 1 + static_cast<std::size_t>(p)], "a physical tag"));
+    }
   }
   text.skip_section("Entities");
 }
@@ -267,19 +279,34 @@ void read_nodes(MeshText& text, RawMesh& mesh) {
 }
 
 /// One element: a triangle is kept, a point or a line is left out, anything else is refused.
-void add_element(MeshText& text, RawMesh& mesh, long tag, long type, long physical,
-                 const std::vector<std::string_view>& tokens, std::size_t first) {
-  if (type == kPointElement || type == kLineElement) return;
+void add_element(MeshText& text, RawMesh& mesh, long tag, long type,
+                 std::span<const long> physicals, const std::vector<std::string_view>& tokens,
+                 std::size_t first) {
+  if (type == kPointElement || type == kLineElement) {
+    // Kept only as the nodes of their physical groups.
+    const std::size_t count = type == kPointElement ? 1 : 2;
+    text.need(tokens, first + count, type == kPointElement ? "a point element" : "a line");
+    for (const long physical : physicals)
+      for (std::size_t k = 0; k < count; ++k)
+        mesh.tagged_nodes[{type == kPointElement ? 0 : 1, physical}].push_back(
+            text.integer(tokens[first + k], "a node tag"));
+    return;
+  }
   if (type != kTriangleElement)
     text.fail(fmt::format("element {} is a {}: only 3-node triangles are read", tag,
                           element_type_name(type)),
               "a 2D mesh of first-order triangles (Gmsh: Mesh.ElementOrder = 1, no Recombine)");
   text.need(tokens, first + 3, "a triangle (three node tags)");
+  if (physicals.size() > 1)
+    text.fail(fmt::format("triangle {} is in {} physical surfaces; it would have more than one "
+                          "material",
+                          tag, physicals.size()),
+              "each surface in at most one physical surface");
   RawMesh::Element element{
       {text.integer(tokens[first], "a node tag"), text.integer(tokens[first + 1], "a node tag"),
        text.integer(tokens[first + 2], "a node tag")},
       tag,
-      physical,
+      physicals.empty() ? -1 : physicals.front(),
       text.line_number() - 1};
   mesh.triangles.push_back(element);
 }
@@ -294,9 +321,12 @@ void read_elements(MeshText& text, RawMesh& mesh) {
       const long tags = text.integer(tokens[2], "the number of tags");
       if (tags < 0) text.fail("a negative number of tags", "a Gmsh 2.2 mesh");
       text.need(tokens, 3 + static_cast<std::size_t>(tags), "an element's tags");
-      const long physical = tags >= 1 ? text.integer(tokens[3], "the physical tag") : -1;
+      // MSH 2.2 gives one physical tag per element (0: none).
+      const long physical = tags >= 1 ? text.integer(tokens[3], "the physical tag") : 0;
+      std::vector<long> physicals;
+      if (physical > 0) physicals.push_back(physical);
       add_element(text, mesh, text.integer(tokens[0], "the element tag"),
-                  text.integer(tokens[1], "the element type"), physical > 0 ? physical : -1, tokens,
+                  text.integer(tokens[1], "the element type"), physicals, tokens,
                   3 + static_cast<std::size_t>(tags));
     }
   } else {
@@ -305,21 +335,12 @@ void read_elements(MeshText& text, RawMesh& mesh) {
     for (long b = 0; b < header[0]; ++b) {
       const auto block = four_integers(text, "an element block (dimension, entity, type, count)");
       const long dimension = block[0], entity = block[1], type = block[2], count = block[3];
-      long physical = -1;
-      if (dimension == 2) {
-        const auto found = mesh.surface_physicals.find(entity);
-        if (found != mesh.surface_physicals.end() && !found->second.empty()) {
-          if (found->second.size() > 1)
-            text.fail(fmt::format("surface {} belongs to {} physical surfaces; its triangles "
-                                  "would have more than one material",
-                                  entity, found->second.size()),
-                      "each surface in at most one physical surface");
-          physical = found->second.front();
-        }
-      }
+      const auto found = mesh.entity_physicals.find({dimension, entity});
+      const std::vector<long> physicals =
+          found == mesh.entity_physicals.end() ? std::vector<long>{} : found->second;
       for (long k = 0; k < count; ++k) {
         const auto tokens = text.next_line("an element");
-        add_element(text, mesh, text.integer(tokens[0], "the element tag"), type, physical, tokens,
+        add_element(text, mesh, text.integer(tokens[0], "the element tag"), type, physicals, tokens,
                     1);
       }
     }
@@ -383,11 +404,7 @@ GmshMesh read_gmsh_mesh(const std::filesystem::path& file, const SourceLocation&
     GmshMesh::Triangle triangle;
     triangle.element = element.tag;
     triangle.line = element.line;
-    if (element.physical >= 0) {
-      const auto name = raw.surface_names.find(element.physical);
-      triangle.physical =
-          name != raw.surface_names.end() ? name->second : fmt::format("{}", element.physical);
-    }
+    if (element.physical >= 0) triangle.physical = raw.name_of(2, element.physical);
     for (std::size_t k = 0; k < 3; ++k) {
       const long tag = element.nodes[k];
       const auto found = index.find(tag);
@@ -412,6 +429,22 @@ GmshMesh read_gmsh_mesh(const std::filesystem::path& file, const SourceLocation&
       mesh.node_tags.push_back(tag);
     }
     mesh.triangles.push_back(std::move(triangle));
+  }
+  // Physical groups: a surface's triangle corners, a curve's or a point's nodes.
+  for (const GmshMesh::Triangle& triangle : mesh.triangles)
+    if (!triangle.physical.empty())
+      for (const std::int32_t corner : triangle.corners)
+        mesh.physical_nodes[triangle.physical].push_back(corner);
+  for (const auto& [group, tags] : raw.tagged_nodes) {
+    std::vector<std::int32_t>& members =
+        mesh.physical_nodes[raw.name_of(group.first, group.second)];
+    for (const long tag : tags)
+      if (const auto found = index.find(tag); found != index.end())
+        members.push_back(found->second);
+  }
+  for (auto& [name, members] : mesh.physical_nodes) {
+    std::sort(members.begin(), members.end());
+    members.erase(std::unique(members.begin(), members.end()), members.end());
   }
   return mesh;
 }

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,10 @@ struct GmshMesh {
   std::vector<std::array<double, 2>> points;
   std::vector<long> node_tags;  ///< the file's tag of each point
   std::vector<Triangle> triangles;
+  /// The nodes (indices into `points`) of each physical group, of any dimension, by name (its tag
+  /// as text if it has none): a physical point's node, a physical curve's line nodes, a physical
+  /// surface's triangle corners; sorted, each once. Nodes of no triangle are left out.
+  std::map<std::string, std::vector<std::int32_t>> physical_nodes;
 };
 
 /// Reads `file`. `where` is the case-file key that names it: a file that cannot be opened is an

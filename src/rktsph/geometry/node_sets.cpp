@@ -379,6 +379,20 @@ std::map<std::string, std::vector<std::int32_t>> select_groups(
                                   tolerance);
         });
         break;
+      case GroupSpec::Kind::Physical: {
+        const auto found = nodes.mesh_groups.find(group.physical);
+        if (found == nodes.mesh_groups.end()) {
+          std::string names;
+          for (const auto& [name, group_nodes] : nodes.mesh_groups)
+            names += (names.empty() ? "'" : ", '") + name + "'";
+          throw InputError(
+              group.where, "groups." + group.name + ".physical", group.physical,
+              "the mesh file has no physical group of this name (with nodes)",
+              names.empty() ? "none: the mesh file defines no physical group" : "one of " + names);
+        }
+        members = found->second;
+        break;
+      }
       case GroupSpec::Kind::Point: {
         std::size_t nearest = 0;
         double best = std::numeric_limits<double>::max();

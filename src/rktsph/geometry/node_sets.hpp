@@ -32,6 +32,9 @@ struct NodeSets {
   /// The boundary facets of the cells, with normals on the reference configuration.
   Outline outline;
   std::vector<std::string> material_names;
+  /// The physical groups of a mesh file by name (docs/theory.md §3.8), their nodes sorted; empty
+  /// for shapes.
+  std::map<std::string, std::vector<std::int32_t>> mesh_groups;
 
   /// True for the lattice builder's node sets: nodes on a square lattice of spacing dx.
   bool on_lattice() const { return layout == CellLayout::Lattice; }

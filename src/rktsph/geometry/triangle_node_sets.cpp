@@ -188,8 +188,15 @@ NodeSets build_mesh_node_sets(const GeometrySpec& geometry,
     }
     triangles.push_back(cell);
   }
-  return triangle_node_sets(points, std::vector<std::int32_t>(points.size(), -1),
-                            std::move(triangles), spacing, material_names);
+  NodeSets nodes = triangle_node_sets(points, std::vector<std::int32_t>(points.size(), -1),
+                                      std::move(triangles), spacing, material_names);
+  for (const auto& [name, members] : mesh.physical_nodes) {
+    std::vector<std::int32_t>& group = nodes.mesh_groups[name];
+    for (const std::int32_t point : members)
+      group.push_back(number[static_cast<std::size_t>(point)]);
+    std::sort(group.begin(), group.end());
+  }
+  return nodes;
 }
 
 MeshFileSize mesh_file_size(const GeometrySpec& geometry) {

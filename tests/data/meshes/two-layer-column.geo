@@ -1,7 +1,7 @@
 // A 2 m wide, 4 m high column of two layers (sand over clay, the interface at y = 1.5 m), meshed
 // by Gmsh (gmsh -2 two-layer-column.geo -format msh41 -o two-layer-column.msh; Gmsh 4.8.4) for
 // tests/geometry/gmsh_mesh_test.cpp: the layers share their interface curve, so its nodes are
-// common to both.
+// common to both; the bottom curve is the physical curve "base".
 lc = 0.25;
 Point(1) = {0, 0, 0, lc};
 Point(2) = {2, 0, 0, lc};
@@ -22,3 +22,4 @@ Curve Loop(2) = {-3, 5, 6, 7};
 Plane Surface(2) = {2};
 Physical Surface("clay") = {1};
 Physical Surface("sand") = {2};
+Physical Curve("base") = {1};

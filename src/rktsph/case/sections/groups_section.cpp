@@ -9,7 +9,7 @@ namespace rktsph {
 
 namespace {
 
-const std::vector<std::string> kSelectors = {"edge", "box", "polygon", "point"};
+const std::vector<std::string> kSelectors = {"edge", "box", "polygon", "point", "physical"};
 
 void read_edge(const YamlNode& edge, GroupSpec& group, Reading& reading) {
   const int dimension = reading.so_far.dimension;
@@ -85,6 +85,20 @@ const KeyTable<GroupSpec>& group_keys() {
               },
               emit_point),
           "m"),
+      section_key<GroupSpec>(
+          "physical", "text", "one selector", "the name of a physical group of geometry.mesh",
+          "The nodes of the mesh file's physical point, curve or surface of that name.",
+          [](const YamlNode& node, GroupSpec& group, Reading& reading) {
+            if (reading.so_far.geometry.mesh.empty())
+              fail_at(node, "physical groups belong to a mesh file, and the case has none",
+                      "box, polygon, point or edge; or geometry.mesh");
+            group.kind = GroupSpec::Kind::Physical;
+            group.physical = to_text(node);
+          },
+          [](YAML::Emitter& out, const GroupSpec& group, const CaseDescription&) {
+            if (group.kind == GroupSpec::Kind::Physical)
+              out << YAML::Key << "physical" << YAML::Value << group.physical;
+          }),
   };
   return keys;
 }
