@@ -629,6 +629,19 @@ TEST(CommandLine, EveryBundledCaseChecksWithoutAWarning) {
   EXPECT_GE(checked, 20);
 }
 
+// The examples (examples/*/case.yaml, e.g. a Gmsh mesh) read, build and pass every check of run.
+TEST(CommandLine, EveryExampleChecksWithoutAWarning) {
+  int checked = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(RKTSPH_SOURCE_DIR) / "examples")) {
+    if (!fs::exists(entry.path() / "case.yaml")) continue;
+    const Result result = run("check --threads 1 " + (entry.path() / "case.yaml").string());
+    EXPECT_EQ(result.status, 0) << entry.path() << ": " << result.output;
+    EXPECT_EQ(result.output.find("warning"), std::string::npos) << result.output;
+    ++checked;
+  }
+  EXPECT_GE(checked, 1);
+}
+
 // Cases run side by side (--jobs) give the same lines, in the order asked, as one after the
 // other: they share no state. The lines' wall times differ and are left out of the comparison.
 TEST(CommandLine, ValidateJobsKeepTheOrderAndTheResults) {
