@@ -19,12 +19,12 @@
 
 #include "check_line.hpp"
 #include "rktsph/case/case_reader.hpp"
-#include "rktsph/case/plausibility.hpp"
 #include "rktsph/core/build_info.hpp"
 #include "rktsph/core/error.hpp"
 #include "rktsph/driver/interrupt.hpp"
 #include "rktsph/driver/run_case.hpp"
 #include "rktsph/output/run_observers.hpp"
+#include "rktsph/simulation/case_warnings.hpp"
 #include "rktsph/simulation/simulation.hpp"
 #include "rktsph/strength_reduction/strength_reduction.hpp"
 #include "rktsph/validation/validation_case.hpp"
@@ -233,8 +233,7 @@ int command_check(const std::string& case_path, const std::vector<std::string>& 
   // observers' settings are checked as run checks them, without writing anything.
   const Simulation simulation(description, limits);
   check_run_observers(simulation);
-  const std::vector<CaseWarning> warnings =
-      plausibility_warnings(description, simulation.time_step());
+  const std::vector<CaseWarning> warnings = case_warnings(simulation);
   for (const CaseWarning& warning : warnings)
     std::cerr << "rktsph: " << warning.to_string() << "\n";
   std::cerr.flush();

@@ -7,13 +7,13 @@
 #include <optional>
 
 #include "rktsph/case/case_reader.hpp"
-#include "rktsph/case/plausibility.hpp"
 #include "rktsph/core/build_info.hpp"
 #include "rktsph/output/atomic_file.hpp"
 #include "rktsph/output/checkpoint_writer.hpp"
 #include "rktsph/output/output_folder.hpp"
 #include "rktsph/output/run_log.hpp"
 #include "rktsph/output/run_observers.hpp"
+#include "rktsph/simulation/case_warnings.hpp"
 #include "rktsph/simulation/stop_when_at_rest.hpp"
 
 namespace rktsph {
@@ -80,7 +80,7 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
                     simulation->nodes().sph_nodes.size(), simulation->nodes().stress_points.size(),
                     simulation->step().operators().boundary_nodes.size(), simulation->time_step(),
                     simulation->total_steps(), omp_get_max_threads()));
-    warnings = warning_lines(plausibility_warnings(description, simulation->time_step()));
+    warnings = warning_lines(case_warnings(*simulation));
     for (const std::string& warning : warnings) {
       log.warning(warning);
       if (options.progress_stream) *options.progress_stream << "rktsph: " << warning << "\n";
