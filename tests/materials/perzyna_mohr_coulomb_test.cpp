@@ -13,6 +13,7 @@
 #include <random>
 #include <vector>
 
+#include "flow_memory.hpp"
 #include "frictional_closed_forms.hpp"
 #include "rktsph/materials/point_driver.hpp"
 #include "stress_states.hpp"
@@ -323,17 +324,7 @@ TEST(PerzynaMohrCoulomb, NoFlowInsideTheHexagon) {
 // near-flow strength. Without it a cell at yield switched between no control and the full one
 // from step to step, which held a slope near failure in a never-ending oscillation (§10.4).
 TEST(PerzynaMohrCoulomb, RemembersThatItHasFlowed) {
-  const auto material = make_material(10.0);
-  const PointState start = initial_point_state(material, kIsotropic);
-  EXPECT_FALSE(material.has_flowed(start.internal));
-  const auto history =
-      drive(material, StrainPath::uniaxial_stress(-1e-3, 30.0), start, options_with_step(0.01, 10));
-  const PointState& failed = history.back();
-  EXPECT_TRUE(material.flows(failed.stress, failed.internal));
-  EXPECT_TRUE(material.has_flowed(failed.internal));
-  // Unloaded to the isotropic start: no flow now, but flowed before.
-  EXPECT_FALSE(material.flows(kIsotropic, failed.internal));
-  EXPECT_TRUE(material.has_flowed(failed.internal));
+  test_support::expect_remembers_its_flow(make_material(10.0), kIsotropic);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "rktsph/core/axes.hpp"
+#include "rktsph/geometry/gmsh_mesh.hpp"
 #include "rktsph/geometry/triangle_node_sets.hpp"
 #include "rktsph/mesh/cell_geometry.hpp"
 
@@ -30,22 +31,6 @@ std::string describe_corners(const NodeSets& nodes, const CellComplex& cells, st
     text += fmt::format("{}({:.6g}, {:.6g})", text.empty() ? "" : ", ",
                         nodes.sph_nodes.position[0][node], nodes.sph_nodes.position[1][node]);
   return text;
-}
-
-struct Box {
-  Vec3 min{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), 0.0};
-  Vec3 max{std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest(), 0.0};
-};
-
-Box bounding_box(const GeometrySpec& geometry, int dimension) {
-  Box box;
-  for (const ShapeSpec& shape : geometry.shapes)
-    for (const Vec3& vertex : shape.vertices)
-      for (int a = 0; a < dimension; ++a) {
-        box.min[a] = std::min(box.min[a], vertex[a]);
-        box.max[a] = std::max(box.max[a], vertex[a]);
-      }
-  return box;
 }
 
 void check_vertices_on_lattice(const GeometrySpec& geometry, int dimension, const Vec3& origin) {
@@ -170,6 +155,23 @@ struct Lattice {
 };
 
 }  // namespace
+
+Box bounding_box(const GeometrySpec& geometry, int dimension) {
+  Box box;
+  const auto include = [&](const Vec3& point) {
+    for (int a = 0; a < dimension; ++a) {
+      box.min[a] = std::min(box.min[a], point[a]);
+      box.max[a] = std::max(box.max[a], point[a]);
+    }
+  };
+  for (const ShapeSpec& shape : geometry.shapes)
+    for (const Vec3& vertex : shape.vertices)
+      include(vertex);
+  if (!geometry.mesh.empty())
+    for (const auto& point : read_gmsh_mesh(geometry.mesh, geometry.mesh_where).points)
+      include({point[0], point[1], 0.0});
+  return box;
+}
 
 NodeEstimate estimate_node_sets(const GeometrySpec& geometry, int dimension) {
   NodeEstimate estimate;

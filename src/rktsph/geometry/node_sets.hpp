@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -59,6 +60,14 @@ NodeEstimate estimate_node_sets(const GeometrySpec& geometry, int dimension);
 /// the physical boundary carries nodes (InputError at the shape otherwise).
 NodeSets build_node_sets(const GeometrySpec& geometry, int dimension,
                          const std::vector<std::string>& material_names);
+
+/// The box around the body: the shapes' vertices, or a mesh file's nodes, in the first
+/// `dimension` axes (the others stay as initialised).
+struct Box {
+  Vec3 min{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), 0.0};
+  Vec3 max{std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest(), 0.0};
+};
+Box bounding_box(const GeometrySpec& geometry, int dimension);
 
 /// Node groups by name: the built-in ones (all, xmin, xmax, ymin, ymax) and those of the case.
 /// A group that selects no node is an InputError at its definition.

@@ -10,7 +10,7 @@
 #include <numbers>
 
 #include "rktsph/core/error.hpp"
-#include "rktsph/geometry/gmsh_mesh.hpp"
+#include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/materials/material.hpp"
 #include "rktsph/output/json_writer.hpp"
 #include "rktsph/simulation/quantities.hpp"
@@ -70,19 +70,9 @@ Drainage slowest_drainage(const CaseDescription& description) {
     drainage.coefficient =
         std::min(drainage.coefficient, permeability / (alpha * alpha / oedometric + storage));
   }
-  double low = std::numeric_limits<double>::infinity(), high = -low;
-  for (const ShapeSpec& shape : description.geometry.shapes)
-    for (const Vec3& vertex : shape.vertices) {
-      low = std::min(low, vertex[1]);
-      high = std::max(high, vertex[1]);
-    }
-  if (!description.geometry.mesh.empty())
-    for (const auto& point :
-         read_gmsh_mesh(description.geometry.mesh, description.geometry.mesh_where).points) {
-      low = std::min(low, point[1]);
-      high = std::max(high, point[1]);
-    }
-  drainage.height = high - low;
+  // fos is 2D: the height is the body's extent along y.
+  const Box box = bounding_box(description.geometry, 2);
+  drainage.height = box.max[1] - box.min[1];
   return drainage;
 }
 
