@@ -19,6 +19,8 @@ DEB_TEST_PACKAGES := python3-matplotlib chromium
 # its sanitizer and libFuzzer runtimes, and its OpenMP.
 # The peer code of `make bench-peers` (bench/README.md): PySPH, from Debian.
 DEB_PEERS_PACKAGES := python3-pysph
+# The mesher and array library of `make bench-fe-triangles` (bench/README.md), from Debian.
+DEB_FE_TRIANGLES_PACKAGES := gmsh python3-numpy
 # The format check of CI (`make format-check`).
 DEB_FORMAT_PACKAGES := clang-format
 DEB_FUZZ_PACKAGES := clang-14 libclang-rt-14-dev libfuzzer-14-dev libomp-14-dev
@@ -27,7 +29,7 @@ FUZZ_SECONDS ?= 60
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: deps deps-test deps-report deps-format deps-fuzz deps-peers format-check configure build run test bench bench-peers validate fuzz format clean
+.PHONY: deps deps-test deps-report deps-format deps-fuzz deps-peers deps-fe-triangles format-check configure build run test bench bench-peers bench-fe-triangles validate fuzz format clean
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
@@ -49,6 +51,11 @@ deps-report: deps
 
 deps-peers: deps
 	@missing=""; for p in $(DEB_PEERS_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; fi
+
+deps-fe-triangles: deps
+	@missing=""; for p in $(DEB_FE_TRIANGLES_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
 	if [ -n "$$missing" ]; then \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; fi
 
@@ -89,6 +96,9 @@ bench: deps build
 # (bench/README.md, "Against PySPH").
 bench-peers: deps-peers build
 	/usr/bin/python3 bench/peers/run_peers.py --build $(BUILD_DIR)
+
+bench-fe-triangles: deps-fe-triangles build
+	/usr/bin/python3 bench/peers/fe_triangles_bar_wave_2d.py --build $(BUILD_DIR)
 
 # The validation report: every case in full, its plots and field pictures, and a check in a
 # headless browser that the page shows them. The report is checked even when a case failed, and
