@@ -120,6 +120,17 @@ TEST(Plausibility, ARunShorterThanItsLoadRampIsFlagged) {
   EXPECT_NE(warnings[0].text.find("after time.end"), std::string::npos) << warnings[0].to_string();
 }
 
+TEST(Plausibility, ARampShorterThanTheTimeStepIsFlagged) {
+  // dt = 1 ms: a ramp over 0.5 ms is a jump to the step, one over 2 ms is two steps long.
+  std::vector<CaseWarning> warnings =
+      warnings_of(replaced(kColumn, "duration: 0.5", "duration: 0.0005"), 1e-3);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0].key, "boundary_conditions.1.traction.y");
+  EXPECT_NE(warnings[0].text.find("less than the time step"), std::string::npos)
+      << warnings[0].to_string();
+  EXPECT_TRUE(warnings_of(replaced(kColumn, "duration: 0.5", "duration: 0.002"), 1e-3).empty());
+}
+
 TEST(Plausibility, ATimeStepLongerThanTheOutputIntervalOrTheRunIsFlagged) {
   std::vector<CaseWarning> warnings = warnings_of(kColumn, 0.2);
   ASSERT_EQ(warnings.size(), 1u);

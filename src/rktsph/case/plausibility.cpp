@@ -161,16 +161,28 @@ std::optional<double> full_value_time(const TimeFunction& function) {
 }
 
 void check_ramp(const TimeFunction& function, const SourceLocation& where, const std::string& key,
-                double end, std::vector<CaseWarning>& warnings) {
+                double end, double time_step, std::vector<CaseWarning>& warnings) {
   const std::optional<double> full = full_value_time(function);
-  if (!full || *full <= end) return;
-  warnings.push_back({where, key, number_text(function.value),
-                      fmt::format("reaches its full value at t = {} s, after time.end = {} s: "
-                                  "the run ends before it is applied in full",
-                                  number_text(*full), number_text(end))});
+  if (full && *full > end)
+    warnings.push_back({where, key, number_text(function.value),
+                        fmt::format("reaches its full value at t = {} s, after time.end = {} s: "
+                                    "the run ends before it is applied in full",
+                                    number_text(*full), number_text(end))});
+  // The step takes an imposed value at the middle of each step (docs/theory.md eq. 2.2), so a
+  // ramp shorter than a step is seen as a jump: its timing is lost by up to half its duration.
+  // A run of one step has its own warning (check_time_step).
+  if (function.kind == TimeFunction::Kind::LinearRamp && function.duration < time_step &&
+      time_step < end)
+    warnings.push_back(
+        {where, key, number_text(function.value),
+         fmt::format("ramps over {} s, less than the time step dt = {} s: the step takes the "
+                     "imposed value at the middle of each step, so it sees a jump, and the ramp's "
+                     "timing is lost by up to half its duration. Ramp over two steps or more, or "
+                     "write function: step if a jump is meant",
+                     number_text(function.duration), number_text(time_step))});
 }
 
-void check_loads_within_run(const CaseDescription& description,
+void check_loads_within_run(const CaseDescription& description, double time_step,
                             std::vector<CaseWarning>& warnings) {
   const double end = description.time.end;
   const char* axes = "xyz";
@@ -180,17 +192,18 @@ void check_loads_within_run(const CaseDescription& description,
     for (int a = 0; a < 3; ++a) {
       if (condition.velocity[a])
         check_ramp(*condition.velocity[a], condition.where,
-                   fmt::format("{}.velocity.{}", path, axes[a]), end, warnings);
+                   fmt::format("{}.velocity.{}", path, axes[a]), end, time_step, warnings);
       if (condition.traction[a])
         check_ramp(*condition.traction[a], condition.where,
-                   fmt::format("{}.traction.{}", path, axes[a]), end, warnings);
+                   fmt::format("{}.traction.{}", path, axes[a]), end, time_step, warnings);
     }
     if (condition.pore_pressure)
-      check_ramp(*condition.pore_pressure, condition.where, path + ".pore_pressure", end, warnings);
+      check_ramp(*condition.pore_pressure, condition.where, path + ".pore_pressure", end, time_step,
+                 warnings);
   }
   if (description.gravity)
     check_ramp(description.gravity->factor, description.gravity->where, "gravity.factor", end,
-               warnings);
+               time_step, warnings);
 }
 
 void check_time_step(const CaseDescription& description, double time_step,
@@ -235,7 +248,7 @@ std::vector<CaseWarning> plausibility_warnings(const CaseDescription& descriptio
   check_materials(description, warnings);
   check_pore_fluid(description, warnings);
   check_water_table(description, warnings);
-  check_loads_within_run(description, warnings);
+  check_loads_within_run(description, time_step, warnings);
   check_time_step(description, time_step, warnings);
   std::stable_sort(warnings.begin(), warnings.end(), earlier);
   return warnings;
