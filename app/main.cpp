@@ -23,6 +23,7 @@
 #include "rktsph/core/error.hpp"
 #include "rktsph/driver/interrupt.hpp"
 #include "rktsph/driver/run_case.hpp"
+#include "rktsph/output/gmsh_writer.hpp"
 #include "rktsph/output/run_observers.hpp"
 #include "rktsph/simulation/case_warnings.hpp"
 #include "rktsph/simulation/simulation.hpp"
@@ -225,7 +226,7 @@ int command_run(const std::string& case_path, const std::string& output, int thr
 }
 
 int command_check(const std::string& case_path, const std::vector<std::string>& sets, int threads,
-                  const SimulationLimits& limits) {
+                  const SimulationLimits& limits, const std::string& mesh_path) {
   // The stencils are built here as in a run, so the threads a run would use are honoured.
   if (threads > 0) omp_set_num_threads(threads);
   const CaseDescription description = read_case_file(case_path, parse_overrides(sets));
@@ -247,6 +248,16 @@ int command_check(const std::string& case_path, const std::vector<std::string>& 
       case_path, simulation.nodes().sph_nodes.size(), simulation.nodes().stress_points.size(),
       simulation.time_step(), simulation.total_steps(), simulation.estimated_memory() * 1e-6,
       warning_count);
+  if (!mesh_path.empty()) {
+    const NodeSets& nodes = simulation.nodes();
+    if (nodes.dimension != 2)
+      throw InputError({}, "--write-mesh", mesh_path,
+                       fmt::format("a {}D case has no cells a mesh file can hold", nodes.dimension),
+                       "a 2D case");
+    write_gmsh_mesh(mesh_path, nodes);
+    std::cout << fmt::format("mesh written to {} ({} nodes, {} cells, Gmsh MSH 2.2)\n", mesh_path,
+                             nodes.sph_nodes.size(), nodes.cells.cell_count());
+  }
   return 0;
 }
 
@@ -464,6 +475,9 @@ int main(int argc, char** argv) {
       ->add_option("--threads", threads,
                    "OpenMP threads for building the stencils (default: all cores)")
       ->check(integer_in_range(1, 1024));
+  std::string mesh_path;
+  check->add_option("--write-mesh", mesh_path,
+                    "Write the cells the case runs on to this Gmsh mesh file (MSH 2.2; 2D cases)");
 
   std::vector<std::string> names;
   bool all = false, quick = false, json = false;
@@ -552,7 +566,7 @@ int main(int argc, char** argv) {
   try {
     if (*run)
       return command_run(case_path, output, threads, sets, quiet, overwrite, restart, limits);
-    if (*check) return command_check(case_path, sets, threads, limits);
+    if (*check) return command_check(case_path, sets, threads, limits, mesh_path);
     if (*validate)
       return command_validate(names, all, quick, json, output, report, threads, jobs, sets,
                               cases_option);

@@ -13,7 +13,9 @@ c_p = 300 m/s, piston v = (0.3, 0) m/s at x = 0 from t = 0, free at x = 1 m, rol
 y = 0.25 m, plane strain) is run to half a transit, 0.5 L/c_p, on triangle meshes written by Gmsh
 (Debian `gmsh`): its Frontal-Delaunay mesher at each target edge length of --sizes, and, as
 the control, a lattice whose squares are cut into four by both diagonals ("Alternate"), which is
-symmetric about every horizontal line through a node row, so v_y must stay zero to rounding.
+symmetric about every horizontal line through a node row, so v_y must stay zero to rounding; and
+the project's own mesh of `triangles-bar-wave-2d` at each spacing of --project-sizes (CGAL, with
+its boundary layer), written by `rktsph check --write-mesh`.
 
 On each mesh two codes run at dt = 0.3 of the narrowest cell width over c_p:
 
@@ -48,6 +50,9 @@ LAME = YOUNG * POISSON / ((1 + POISSON) * (1 - 2 * POISSON))
 SHEAR = YOUNG / (2 * (1 + POISSON))
 WAVE_SPEED = np.sqrt((LAME + 2 * SHEAR) / DENSITY)  # 300 m/s
 END = 0.5 * LENGTH / WAVE_SPEED
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SOURCE = os.path.dirname(os.path.dirname(HERE))
 
 GEO_FRONTAL = """// BAR-WAVE-2D bar meshed by Gmsh's Frontal-Delaunay, edges about {size} m
 Point(1) = {{0, 0, 0, {size}}}; Point(2) = {{{length}, 0, 0, {size}}};
@@ -201,9 +206,17 @@ probes:
     return measures(times, sideways, float(rows[-1]["behind.velocity_x"]))
 
 
-def mesh(kind, size, folder):
+def mesh(kind, size, folder, build):
     geo = os.path.join(folder, "bar.geo")
     msh = os.path.join(folder, "bar.msh")
+    if kind == "project":
+        # The mesh of triangles-bar-wave-2d itself (CGAL, with its boundary layer), as rktsph
+        # check writes it.
+        case = os.path.join(SOURCE, "cases", "triangles-bar-wave-2d", "case.yaml")
+        subprocess.run([os.path.join(build, "rktsph"), "check", case, "--set",
+                        f"geometry.spacing={size}", "--write-mesh", msh], check=True,
+                       stdout=subprocess.DEVNULL)
+        return msh
     with open(geo, "w") as stream:
         if kind == "frontal":
             stream.write(GEO_FRONTAL.format(size=size, length=LENGTH, height=HEIGHT))
@@ -221,9 +234,11 @@ def main():
     parser.add_argument("--build", required=True)
     parser.add_argument("--out")
     parser.add_argument("--sizes", nargs="+", type=float, default=[0.01, 0.007, 0.005])
+    parser.add_argument("--project-sizes", nargs="*", type=float, default=[0.01, 0.005])
     args = parser.parse_args()
     out = args.out or os.path.join(args.build, "bench-fe-triangles")
     meshes = [("crossed", 0.01)] + [("frontal", size) for size in args.sizes]
+    meshes += [("project", size) for size in args.project_sizes]
     results = []
     header = (f"{'mesh':<16}{'nodes':>7}{'code':>22}{'steps':>7}{'max|vy|/V0':>12}"
               f"{'past 5cm':>10}{'past 30cm':>11}{'vx plateau':>12}")
@@ -231,7 +246,7 @@ def main():
     for kind, size in meshes:
         folder = os.path.join(out, f"{kind}-{size:g}")
         os.makedirs(folder, exist_ok=True)
-        points, triangles = read_msh22(mesh(kind, size, folder))
+        points, triangles = read_msh22(mesh(kind, size, folder, args.build))
         runs = [("rktsph (alpha 0.25)",
                  rktsph(args.build, os.path.join(folder, "bar.msh"), folder))]
         for bulk in (0.0, 0.25, 1.0):

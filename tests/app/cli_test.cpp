@@ -338,6 +338,30 @@ TEST(CommandLine, CheckBuildsATriangleMeshAndRefusesTheQuadrilateralsControlOnIt
   EXPECT_NE(stiffness.output.find("quadrilaterals"), std::string::npos) << stiffness.output;
 }
 
+TEST(CommandLine, CheckWritesTheCellsAsAGmshMeshAndRefusesItFor1D) {
+  // The slope on triangles: the mesh file holds every node and cell check counts.
+  const std::string slope = std::string(RKTSPH_SOURCE_DIR) + "/cases/slope-elastic/case.yaml";
+  const fs::path mesh = scratch("slope.msh");
+  fs::remove(mesh);
+  const Result written =
+      run("check " + slope + " --set geometry.cells=triangles --write-mesh " + mesh.string());
+  ASSERT_EQ(written.status, 0) << written.output;
+  EXPECT_NE(written.output.find("mesh written to " + mesh.string()), std::string::npos)
+      << written.output;
+  std::ifstream file(mesh);
+  std::string first;
+  std::getline(file, first);
+  EXPECT_EQ(first, "$MeshFormat");
+  // The bar is 1D: no mesh file, an input error naming the option, and nothing written.
+  const fs::path bar_mesh = scratch("bar.msh");
+  fs::remove(bar_mesh);
+  const Result bar =
+      run("check " + write_case("bar.yaml", kBar).string() + " --write-mesh " + bar_mesh.string());
+  EXPECT_EQ(bar.status, 2) << bar.output;
+  EXPECT_NE(bar.output.find("--write-mesh"), std::string::npos) << bar.output;
+  EXPECT_FALSE(fs::exists(bar_mesh));
+}
+
 TEST(CommandLine, MisspelledKeyNamesFileLineAndKey) {
   const fs::path path = write_case("typo.yaml", replaced(kBar, "  spacing: 0.5", "  spacng: 0.5"));
   const Result result = run("check " + path.string());

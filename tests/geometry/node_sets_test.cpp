@@ -18,11 +18,7 @@ using test::rectangle;
 TEST(NodeSets, SegmentHasNodesAtBothEndsAndMidpointStressPoints) {
   GeometrySpec geometry;
   geometry.spacing = 0.5;
-  ShapeSpec segment;
-  segment.kind = ShapeSpec::Kind::Segment;
-  segment.vertices = {{2.0, 0.0, 0.0}, {12.0, 0.0, 0.0}};
-  segment.material = "soil";
-  geometry.shapes = {segment};
+  geometry.shapes = {test::segment(2.0, 12.0, "soil")};
   const NodeSets nodes = build_node_sets(geometry, 1, {"soil"});
   ASSERT_EQ(nodes.sph_nodes.size(), 21u);
   ASSERT_EQ(nodes.stress_points.size(), 20u);

@@ -65,7 +65,7 @@ const std::map<std::string, std::map<std::string, std::string>>& known_open_chec
          "mesh; 0.019 before the layer, whose symmetric cells at the piston give none); it decays "
          "as the front spreads (3.4e-3 V0 beyond 0.05 m, 4.6e-4 V0 by mid-bar). Not a mode: it "
          "scales with the steepness of the front on irregular cells; textbook finite elements on "
-         "the same Gmsh meshes give 0.03-0.05 V0 (make bench-fe-triangles; docs/theory.md "
+         "the same meshes give 0.04-0.05 V0 (make bench-fe-triangles; docs/theory.md "
          "§8.11)"}}},
       {"vpw-vertical-cut-footing", {{"contact_pressure_oddeven_ratio", plastic_edge}}},
       {"ld-vertical-cut-footing", {{"contact_pressure_oddeven_ratio", dry_plastic_edge}}},
