@@ -86,6 +86,12 @@ const std::map<std::string, std::map<std::string, std::string>>& known_open_chec
          "the detector flags interior nodes beside the crushed bottom cells (volume ratio below "
          "0.2) as surface: 1, 3 and 4 of the 40 outline nodes at 1.0, 1.3 and 1.45 s, 6 on the "
          "folded state the check sees; 3 of 80 on the full lattice (docs/theory.md §9.14)"}}},
+      {"ld-footing-penetration",
+       {{"settlement_reached",
+         "a cell beside the footing's edge takes the velocity jump between the footing and the "
+         "heave and is turned inside out at 0.61 B (quick; 0.33 B on the full case's finer "
+         "lattice): a Lagrangian cell cannot follow a punch edge to 1 B (docs/theory.md §9.12, "
+         "§9.16)"}}},
       {"ld-strip-footing-bearing",
        {{"contact_pressure_oddeven_ratio", dry_plastic_edge},
         {"settlement_reached", punch_edge},

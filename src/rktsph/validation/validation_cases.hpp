@@ -72,6 +72,10 @@ namespace ld_slope_low_cohesion {
 std::vector<CheckResult> validate_ld_slope_low_cohesion(const ValidationContext& context);
 }  // namespace ld_slope_low_cohesion
 
+namespace ld_footing_penetration {
+std::vector<CheckResult> validate_ld_footing_penetration(const ValidationContext& context);
+}  // namespace ld_footing_penetration
+
 namespace ld_strip_footing_bearing {
 std::vector<CheckResult> validate_ld_strip_footing_bearing(const ValidationContext& context);
 }  // namespace ld_strip_footing_bearing

@@ -292,6 +292,19 @@ FootingRow footing_row(const CaseDescription& description, FootingPlace place) {
   return row;
 }
 
+HalfModelFooting half_model_footing(const ValidationContext& context, const std::string& folder,
+                                    double quick_spacing) {
+  std::vector<CaseOverride> overrides;
+  if (context.quick) overrides.push_back({"geometry.spacing", fmt::format("{}", quick_spacing)});
+  HalfModelFooting footing;
+  footing.description = load_bundled_case(context, folder, overrides);
+  footing.row = footing_row(footing.description, FootingPlace::SymmetryPlane);
+  footing.width = 2.0 * footing.row.right;
+  footing.nodes =
+      static_cast<int>(std::lround(footing.row.right / footing.description.geometry.spacing)) + 1;
+  return footing;
+}
+
 StripLoad read_strip_load(const CaseDescription& description) {
   StripLoad load;
   load.row = footing_row(description, FootingPlace::SymmetryPlane);

@@ -115,6 +115,18 @@ struct FootingRow {
 };
 FootingRow footing_row(const CaseDescription& description, FootingPlace place);
 
+/// A rigid footing pushed into a half model about x = 0 (the large-deformation footing cases):
+/// cases/<folder>/case.yaml (geometry.spacing = quick_spacing in a quick run), its footing row from
+/// the symmetry plane to the edge at B/2, the width B and the number of footing nodes.
+struct HalfModelFooting {
+  CaseDescription description;
+  FootingRow row;
+  double width = 0.0;  ///< B [m]
+  int nodes = 0;       ///< on the row, both ends included
+};
+HalfModelFooting half_model_footing(const ValidationContext& context, const std::string& folder,
+                                    double quick_spacing);
+
 /// The flexible strip load of a half model about x = 0 (the elastic strip footing cases): the
 /// traction -q(t) on the row `footing` from the symmetry plane to x = b, which acts on the facets
 /// within it, so that the load sums to q b (docs/theory.md §5.1). RunError otherwise.

@@ -133,14 +133,13 @@ void report_bearing(ValidationReport& report, const ValidationRun& run, double f
 }  // namespace
 
 std::vector<CheckResult> validate_ld_strip_footing_bearing(const ValidationContext& context) {
-  std::vector<CaseOverride> overrides;
-  if (context.quick) overrides.push_back({"geometry.spacing", fmt::format("{}", kQuickSpacing)});
-  const CaseDescription description = load_bundled_case(context, kCase, overrides);
-  const double spacing = description.geometry.spacing;
   // The half model: the footing from the symmetry plane x = 0 to its edge at B/2.
-  const FootingRow footing = footing_row(description, FootingPlace::SymmetryPlane);
-  const double half_width = footing.right, footing_width = 2.0 * half_width;
-  const int footing_nodes = static_cast<int>(std::lround(half_width / spacing)) + 1;
+  const HalfModelFooting half_model = half_model_footing(context, kCase, kQuickSpacing);
+  const CaseDescription& description = half_model.description;
+  const FootingRow& footing = half_model.row;
+  const double spacing = description.geometry.spacing;
+  const double half_width = footing.right, footing_width = half_model.width;
+  const int footing_nodes = half_model.nodes;
 
   FootingContactSampler contact{footing.surface, 0.0,          half_width,
                                 footing_width,   kPlateauFrom, kPlateauTo};
