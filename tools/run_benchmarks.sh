@@ -134,7 +134,7 @@ if [[ ${RKTSPH_BENCH_KERNELS:-1} != 0 ]]; then
     --benchmark_min_time=0.1
   kernel_files=("${json_files[@]}")
   json=$out_dir/table-build.json
-  if run_bench 1 "$out_dir/table-build.log" --benchmark_filter='^BM_(BuildOperatorTables|StepOperatorRebuild)/' \
+  if run_bench 1 "$out_dir/table-build.log" --benchmark_filter='^BM_(BuildOperatorTables|StepOperatorRebuild|DelaunayCells)/' \
     --benchmark_out="$json" --benchmark_out_format=json; then
     kernel_files+=("$json")
   else
