@@ -230,6 +230,11 @@ int command_check(const std::string& case_path, const std::vector<std::string>& 
   // The stencils are built here as in a run, so the threads a run would use are honoured.
   if (threads > 0) omp_set_num_threads(threads);
   const CaseDescription description = read_case_file(case_path, parse_overrides(sets));
+  if (!mesh_path.empty() && description.dimension != 2)
+    throw InputError(
+        {}, "--write-mesh", mesh_path,
+        fmt::format("a {}D case has no cells a mesh file can hold", description.dimension),
+        "a 2D case");
   // Building the simulation checks materials, groups, boundary conditions and stencils too; the
   // observers' settings are checked as run checks them, without writing anything.
   const Simulation simulation(description, limits);
@@ -250,10 +255,6 @@ int command_check(const std::string& case_path, const std::vector<std::string>& 
       warning_count);
   if (!mesh_path.empty()) {
     const NodeSets& nodes = simulation.nodes();
-    if (nodes.dimension != 2)
-      throw InputError({}, "--write-mesh", mesh_path,
-                       fmt::format("a {}D case has no cells a mesh file can hold", nodes.dimension),
-                       "a 2D case");
     write_gmsh_mesh(mesh_path, nodes);
     std::cout << fmt::format("mesh written to {} ({} nodes, {} cells, Gmsh MSH 2.2)\n", mesh_path,
                              nodes.sph_nodes.size(), nodes.cells.cell_count());
