@@ -40,7 +40,12 @@ double WaterTable::depth_below(double x, double y) const {
 }
 
 double WaterTable::density_above(double density, double porosity, double fluid_density) const {
-  return density_above_ ? *density_above_ : density - porosity * fluid_density;
+  return density_above_table(density_above_, density, porosity, fluid_density);
+}
+
+double density_above_table(std::optional<double> given, double density, double porosity,
+                           double fluid_density) {
+  return given ? *given : density - porosity * fluid_density;
 }
 
 }  // namespace rktsph

@@ -36,4 +36,10 @@ class WaterTable {
   std::optional<double> density_above_;
 };
 
+/// The mass density that soil of mixture density `density` weighs above a water table [kg/m^3]
+/// (docs/theory.md §6.8): `given` (the case's `density_above`) if set, else rho - n rho_w, its
+/// pores drained.
+double density_above_table(std::optional<double> given, double density, double porosity,
+                           double fluid_density);
+
 }  // namespace rktsph

@@ -41,12 +41,10 @@ namespace rktsph::case_checks::vpw_water_table {
 
 namespace {
 
-/// The density the case gives the soil above its water table (docs/theory.md §6.8): its
-/// `density_above`, or rho - n rho_w, its pores drained.
+/// The density the case gives the soil above its water table (docs/theory.md §6.8).
 double case_density_above(const PoreFluidSpec& fluid, double density) {
-  if (fluid.water_table && fluid.water_table->density_above)
-    return *fluid.water_table->density_above;
-  return density - fluid.porosity * fluid.density;
+  return density_above_table(fluid.water_table ? fluid.water_table->density_above : std::nullopt,
+                             density, fluid.porosity, fluid.density);
 }
 
 constexpr const char* kFolder = "vpw-water-table";
