@@ -250,7 +250,7 @@ int command_check(const std::string& case_path, const std::vector<std::string>& 
   std::cout << fmt::format(
       "{}: OK ({} SPH nodes, {} stress points, dt = {:.4g} s, {} steps, memory about {:.3g} "
       "MB{})\n",
-      case_path, simulation.nodes().sph_nodes.size(), simulation.nodes().stress_points.size(),
+      case_path, simulation.nodes().sph_nodes.size(), simulation.cells().stress_points.size(),
       simulation.time_step(), simulation.total_steps(), simulation.estimated_memory() * 1e-6,
       warning_count);
   if (!mesh_path.empty()) {

@@ -140,6 +140,40 @@ void BM_MovingBarWaveStep(benchmark::State& bench_state, const std::string& size
                  [&]() -> Simulation& { return simulation_for(size, "dry_large_deformation"); });
 }
 
+/// The same moving bar on cells formed again from its nodes (numerics.cells.policy: reformed,
+/// docs/theory.md §9.17): the loop's step (Simulation::take_step), which forms the cells again
+/// where one has distorted and takes a step in parts where a formed cell is narrower than the one
+/// that set dt. Its Delaunay triangles are twice the lattice's squares, and dt is that of their
+/// width dx/sqrt 2: per unit of simulated time about 2.8 times the stress-point steps.
+void BM_ReformedBarWaveStep(benchmark::State& bench_state, const std::string& size) {
+  Simulation* simulation = nullptr;
+  try {
+    simulation = &cached_simulation(case_path(size), {{"model", "dry_large_deformation"},
+                                                      {"numerics.cells.policy", "reformed"}});
+  } catch (const std::exception& error) {
+    bench_state.SkipWithError(error.what());
+    return;
+  }
+  const long formings_before = simulation->assembly().cell_forming().formings;
+  for (auto _ : bench_state) {
+    simulation->take_step();
+    benchmark::ClobberMemory();
+  }
+  if (!all_finite(simulation->state().fields)) {
+    bench_state.SkipWithError("the state became non-finite");
+    return;
+  }
+  const auto nodes = static_cast<std::int64_t>(simulation->nodes().sph_nodes.size());
+  bench_state.SetItemsProcessed(bench_state.iterations() * nodes);  // particle-steps
+  bench_state.counters["nodes"] = static_cast<double>(nodes);
+  bench_state.counters["stress_points"] =
+      static_cast<double>(simulation->cells().stress_points.size());
+  bench_state.counters["formings"] =
+      static_cast<double>(simulation->assembly().cell_forming().formings - formings_before);
+  bench_state.counters["threads"] = static_cast<double>(omp_get_max_threads());
+  bench_state.counters["dt_us"] = simulation->time_step() * 1e6;
+}
+
 /// The first steps of the collapsing low-cohesion block (cases/ld-slope-low-cohesion,
 /// docs/theory.md §9.14) at `spacing`: a viscoplastic body flowing under gravity, with its rigid
 /// base found again after every move.
@@ -186,6 +220,15 @@ BENCHMARK_CAPTURE(BM_MovingBarWaveStep, m, std::string("m"))
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK_CAPTURE(BM_MovingBarWaveStep, l, std::string("l"))
+    ->Iterations(5)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+BENCHMARK_CAPTURE(BM_ReformedBarWaveStep, s, std::string("s"))
+    ->Iterations(20)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_ReformedBarWaveStep, l, std::string("l"))
     ->Iterations(5)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

@@ -273,7 +273,7 @@ if [[ ${RKTSPH_BENCH_MOVING:-1} != 0 ]]; then
   echo "   low-cohesion block; every step recomputes its weights, and searches its stencils after"
   echo "   0.1 dx of motion; medians of $repetitions)"
   run_per_thread_count moving "moving-configuration benchmarks" \
-    '^BM_(MovingBarWaveStep|LowCohesionSlopeStep)/'
+    '^BM_(MovingBarWaveStep|ReformedBarWaveStep|LowCohesionSlopeStep)/'
   if [[ ${#json_files[@]} -gt 0 ]] && ! python3 - "${json_files[@]}" <<'PYTHON'
 import json
 import sys

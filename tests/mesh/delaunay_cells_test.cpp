@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rktsph/mesh/cell_geometry.hpp"
+#include "rktsph/mesh/outline.hpp"
 
 namespace rktsph::delaunay_cells_test {
 namespace {
@@ -155,4 +156,33 @@ TEST(DelaunayCells, RefusesInputItCannotFormCellsFrom) {
 }
 
 }  // namespace
+TEST(DelaunayCells, TwoTrianglesTouchingAtANodeAreJoinedIntoOneFan) {
+  // Two triangles meet at the origin only (a bow tie): triangle (-2,-1), (-2,1), (0,0) has
+  // R = abc/(4A) = 2 sqrt5 sqrt5 / (4 * 2) = 1.25, the Delaunay triangles above and below the
+  // origin ((-2,1), (0,0), (2,1) and its mirror) R = 4 sqrt5 sqrt5 / (4 * 2) = 2.5. At alpha 1.5
+  // the criterion keeps the two and drops the two between them, leaving the origin in two fans; one
+  // gap is kept again, and the origin's cells form one fan.
+  PointCloud cloud;
+  cloud.dimension = 2;
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{
+           {-2.0, -1.0}, {-2.0, 1.0}, {0.0, 0.0}, {2.0, -1.0}, {2.0, 1.0}}) {
+    cloud.resize(cloud.size() + 1);
+    cloud.position[0].back() = x;
+    cloud.position[1].back() = y;
+  }
+  const DelaunayCells formed = form(cloud, 1.0, 1.5);
+  EXPECT_EQ(formed.count.triangles, 4u);
+  EXPECT_EQ(formed.count.restored, 1u);
+  EXPECT_EQ(formed.count.dropped, 1u);
+  ASSERT_EQ(formed.cells.cell_count(), 3u);
+  // One fan at the origin: its three cells are joined edge to edge, so the outline passes the
+  // origin once, on two facets.
+  const Outline outline(formed.cells, cloud);
+  EXPECT_EQ(outline.facets_at(2).size(), 2u);
+  for (std::size_t n = 0; n < cloud.size(); ++n)
+    EXPECT_LE(outline.facets_at(n).size(), 2u) << "node " << n;
+  // Without the alpha cut nothing is restored.
+  EXPECT_EQ(form(cloud, 1.0, 3.0).count.restored, 0u);
+}
+
 }  // namespace rktsph::delaunay_cells_test

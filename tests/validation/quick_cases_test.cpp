@@ -2,12 +2,12 @@
 // them; `rktsph validate --all` runs the full ones. Named *Slow* so that the sanitizer pass of CI
 // leaves them to the Release pass.
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <filesystem>
 #include <iostream>
 #include <map>
 
+#include "../support/validation_runs.hpp"
 #include "rktsph/validation/validation_case.hpp"
 
 namespace rktsph::quick_cases_test {
@@ -107,27 +107,14 @@ TEST_P(QuickValidationSlow, PassesItsChecks) {
   if (const auto problem = known_open_problems().find(GetParam());
       problem != known_open_problems().end())
     GTEST_SKIP() << GetParam() << ": " << problem->second;
-  // One thread per case: ctest runs two of these at once on two cores, and a second OpenMP thread
-  // per case would only wait at the barriers of loops too short to share (the quick lattices are
-  // small), taking a core from the other case. The parallel paths have their own tests.
-  struct OneThread {
-    int saved = omp_get_max_threads();
-    OneThread() { omp_set_num_threads(1); }
-    ~OneThread() { omp_set_num_threads(saved); }
-  } one_thread;
-  const auto& cases = validation_cases();
-  const auto it = std::find_if(cases.begin(), cases.end(),
-                               [&](const ValidationCase& c) { return c.name == GetParam(); });
-  ASSERT_NE(it, cases.end());
-  ValidationContext context;
-  context.cases_directory = std::filesystem::path(RKTSPH_SOURCE_DIR) / "cases";
-  context.output_directory =
-      std::filesystem::temp_directory_path() / ("rktsph_quick_" + std::to_string(getpid()));
-  context.quick = true;
+  const test::OneOpenMpThread one_thread;  // tests/support/validation_runs.hpp
+  const ValidationCase* validation = test::bundled_validation(GetParam());
+  ASSERT_NE(validation, nullptr);
+  ValidationContext context = test::quick_validation_context("rktsph_quick_");
   // With the report on, as `make validate` runs them: the figures and pictures are collected too,
   // and every case must give at least one of each (issue: a plot and a picture per case).
   context.write_report = true;
-  const ValidationResult result = run_validation(*it, context);
+  const ValidationResult result = run_validation(*validation, context);
   EXPECT_TRUE(result.error.empty()) << result.error;
   EXPECT_FALSE(result.figures.empty()) << GetParam() << " describes no figure for the report";
   EXPECT_FALSE(result.pictures.empty()) << GetParam() << " describes no field picture";

@@ -56,6 +56,13 @@ enum class CellLayout {
   Triangles,  ///< a constrained Delaunay triangle mesh, edges at most dx; 2D only
 };
 
+/// Which cells a large-deformation model integrates over as its nodes move (docs/theory.md
+/// §9.17): those of the start, moved with the nodes, or cells formed again from the nodes.
+enum class CellPolicy {
+  Moving,    ///< the cells of the start, their corners moved with the nodes (§9.1)
+  Reformed,  ///< Delaunay cells of the current nodes, formed again when one distorts (§9.17)
+};
+
 struct GeometrySpec {
   /// Lattice spacing dx, or the triangles' longest edge [m], > 0; with `mesh`, the mesh's longest
   /// edge, set when the mesh is read (0 until then).
@@ -223,6 +230,11 @@ struct NumericsSpec {
   /// on triangles, 0 (off) on a lattice
   std::optional<double> patch_stiffness;
   double artificial_viscosity = 0.0;  ///< alpha of docs/theory.md §2.7, 0 = off
+  /// numerics.cells (docs/theory.md §9.17): the cells of a moving configuration.
+  CellPolicy cell_policy = CellPolicy::Moving;
+  double reform_alpha = 1.0;         ///< alpha of eq. 3.15 when cells are formed again
+  double reform_corner_ratio = 0.5;  ///< a cell's corner Jacobian over its formation one below
+                                     ///< which the cells are formed again
   SourceLocation where;
 };
 

@@ -12,6 +12,13 @@ struct StepTimeSplit {
   double surface = 0.0;          ///< moving the configuration and turning its faces [s]
   double integration = 0.0;      ///< the rest of the step: the Taylor-Runge-Kutta update [s]
   double total() const { return cell_lists + operator_tables + surface + integration; }
+  StepTimeSplit& operator+=(const StepTimeSplit& other) {
+    cell_lists += other.cell_lists;
+    operator_tables += other.operator_tables;
+    surface += other.surface;
+    integration += other.integration;
+    return *this;
+  }
 };
 
 /// Seconds since `start`, and restarts it.

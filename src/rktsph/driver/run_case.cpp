@@ -77,7 +77,7 @@ RunOutcome run_case(const CaseDescription& description, const std::filesystem::p
     log.info(
         fmt::format("{} SPH nodes, {} stress points, {} boundary nodes; dt = {:.6g} s, {} steps, "
                     "{} threads",
-                    simulation->nodes().sph_nodes.size(), simulation->nodes().stress_points.size(),
+                    simulation->nodes().sph_nodes.size(), simulation->cells().stress_points.size(),
                     simulation->step().operators().boundary_nodes.size(), simulation->time_step(),
                     simulation->total_steps(), omp_get_max_threads()));
     warnings = warning_lines(case_warnings(*simulation));

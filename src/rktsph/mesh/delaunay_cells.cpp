@@ -3,6 +3,7 @@
 // CGAL's headers are under /usr/include, a system directory, so their own warnings are not ours.
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <fmt/format.h>
 
@@ -18,9 +19,9 @@ namespace {
 
 using DelaunayKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using IndexedVertex = CGAL::Triangulation_vertex_base_with_info_2<std::int32_t, DelaunayKernel>;
-using DelaunayStructure =
-    CGAL::Triangulation_data_structure_2<IndexedVertex,
-                                         CGAL::Triangulation_face_base_2<DelaunayKernel>>;
+// A face's info: 1 while it is a kept cell.
+using FlaggedFace = CGAL::Triangulation_face_base_with_info_2<int, DelaunayKernel>;
+using DelaunayStructure = CGAL::Triangulation_data_structure_2<IndexedVertex, FlaggedFace>;
 using NodeTriangulation = CGAL::Delaunay_triangulation_2<DelaunayKernel, DelaunayStructure>;
 using DelaunayPoint = DelaunayKernel::Point_2;
 
@@ -63,40 +64,138 @@ std::int32_t cell_material(const std::array<std::int32_t, 3>& corner,
   return m(first);
 }
 
+// Where the kept faces around a node form more than one fan (two parts of the body touching at a
+// node, or a notch closing on it), the outline passes the node twice and its surface has no
+// single side: the dropped faces of the smallest gap that is not the outside are kept again,
+// until every node has one fan (docs/theory.md §3.9). Returns how many faces were kept again.
+std::size_t join_fans(NodeTriangulation& triangulation) {
+  std::size_t restored = 0;
+  if (triangulation.dimension() < 2) return restored;  // nodes on a line: no face
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (auto vertex = triangulation.finite_vertices_begin();
+         vertex != triangulation.finite_vertices_end(); ++vertex) {
+      std::vector<NodeTriangulation::Face_handle> around;
+      auto face = triangulation.incident_faces(vertex), end = face;
+      do {
+        around.push_back(face);
+      } while (++face != end);
+      const auto kept = [&](std::size_t k) {
+        return !triangulation.is_infinite(around[k]) && around[k]->info() == 1;
+      };
+      const std::size_t n = around.size();
+      std::size_t start = n;  // a kept face that follows a gap
+      std::size_t fans = 0;
+      for (std::size_t k = 0; k < n; ++k)
+        if (kept(k) && !kept((k + n - 1) % n)) {
+          ++fans;
+          if (start == n) start = k;
+        }
+      if (fans < 2) continue;
+      // The gaps in order from `start`; the smallest one of finite faces is filled.
+      std::size_t best_begin = n, best_length = n + 1;
+      for (std::size_t k = 0; k < n;) {
+        const std::size_t at = (start + k) % n;
+        if (kept(at)) {
+          ++k;
+          continue;
+        }
+        std::size_t length = 0;
+        bool outside = false;
+        while (k + length < n && !kept((start + k + length) % n)) {
+          outside = outside || triangulation.is_infinite(around[(start + k + length) % n]);
+          ++length;
+        }
+        if (!outside && length < best_length) {
+          best_begin = at;
+          best_length = length;
+        }
+        k += length;
+      }
+      if (best_begin == n) continue;
+      for (std::size_t k = 0; k < best_length; ++k)
+        around[(best_begin + k) % n]->info() = 1;
+      restored += best_length;
+      changed = true;
+    }
+  }
+  return restored;
+}
+
+// A node the alpha criterion left in no cell keeps the Delaunay triangle at it with the smallest
+// circumradius (docs/theory.md §9.17): a node at the thinned front of a flow stays in the body,
+// held by a stretched cell. Returns how many faces were kept again.
+std::size_t keep_every_node(NodeTriangulation& triangulation) {
+  std::size_t restored = 0;
+  if (triangulation.dimension() < 2) return restored;
+  for (auto vertex = triangulation.finite_vertices_begin();
+       vertex != triangulation.finite_vertices_end(); ++vertex) {
+    NodeTriangulation::Face_handle best;
+    double smallest = HUGE_VAL;
+    auto face = triangulation.incident_faces(vertex), end = face;
+    bool in_a_cell = false;
+    do {
+      if (triangulation.is_infinite(face)) continue;
+      if (face->info() == 1) {
+        in_a_cell = true;
+        break;
+      }
+      const double radius = circumradius(
+          {face->vertex(0)->point(), face->vertex(1)->point(), face->vertex(2)->point()});
+      if (radius < smallest) {
+        smallest = radius;
+        best = face;
+      }
+    } while (++face != end);
+    if (in_a_cell || best == NodeTriangulation::Face_handle()) continue;
+    best->info() = 1;
+    ++restored;
+  }
+  return restored;
+}
+
 }  // namespace
 
 DelaunayCells delaunay_cells(const PointCloud& nodes, std::span<const double> spacing,
-                             std::span<const std::int32_t> node_material, double alpha) {
+                             std::span<const std::int32_t> node_material, double alpha,
+                             bool every_node_in_a_cell) {
   require_input(nodes, spacing, node_material, alpha);
   std::vector<std::pair<DelaunayPoint, std::int32_t>> points;
   points.reserve(nodes.size());
   for (std::size_t n = 0; n < nodes.size(); ++n)
     points.emplace_back(DelaunayPoint(nodes.position[0][n], nodes.position[1][n]),
                         static_cast<std::int32_t>(n));
-  const NodeTriangulation triangulation(points.begin(), points.end());
+  NodeTriangulation triangulation(points.begin(), points.end());
   if (triangulation.number_of_vertices() != nodes.size())
     throw std::invalid_argument(fmt::format(
         "delaunay_cells: {} nodes but {} distinct positions; two nodes lie at one position",
         nodes.size(), triangulation.number_of_vertices()));
 
   DelaunayCells formed{CellComplex(2, nodes.size()), {}};
+  for (auto face = triangulation.finite_faces_begin(); face != triangulation.finite_faces_end();
+       ++face) {
+    ++formed.count.triangles;
+    std::array<DelaunayPoint, 3> position{};
+    double mean_spacing = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      position[static_cast<std::size_t>(k)] = face->vertex(k)->point();
+      mean_spacing += spacing[static_cast<std::size_t>(face->vertex(k)->info())] / 3.0;
+    }
+    face->info() = circumradius(position) <= alpha * mean_spacing ? 1 : 0;  // eq. 3.15
+  }
+  if (every_node_in_a_cell) formed.count.restored += keep_every_node(triangulation);
+  formed.count.restored += join_fans(triangulation);
   // Faces in the triangulation's order, which follows the input: the complex is the same for the
   // same nodes.
   for (auto face = triangulation.finite_faces_begin(); face != triangulation.finite_faces_end();
        ++face) {
-    ++formed.count.triangles;
-    std::array<std::int32_t, 3> corner{};
-    std::array<DelaunayPoint, 3> position{};
-    double mean_spacing = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      corner[static_cast<std::size_t>(k)] = face->vertex(k)->info();
-      position[static_cast<std::size_t>(k)] = face->vertex(k)->point();
-      mean_spacing += spacing[static_cast<std::size_t>(face->vertex(k)->info())] / 3.0;
-    }
-    if (circumradius(position) > alpha * mean_spacing) {  // eq. 3.15
+    if (face->info() == 0) {
       ++formed.count.dropped;
       continue;
     }
+    std::array<std::int32_t, 3> corner{};
+    for (int k = 0; k < 3; ++k)
+      corner[static_cast<std::size_t>(k)] = face->vertex(k)->info();
     // CGAL's faces are counter-clockwise, as the complex's triangles.
     formed.cells.add_cell(CellKind::Triangle, corner, cell_material(corner, node_material));
   }

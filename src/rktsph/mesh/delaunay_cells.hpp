@@ -18,6 +18,8 @@ namespace rktsph {
 struct DelaunayCellCount {
   std::size_t triangles = 0;
   std::size_t dropped = 0;
+  /// Dropped triangles kept again so that every node has one fan of cells (a manifold outline).
+  std::size_t restored = 0;
   std::size_t isolated_nodes = 0;
 };
 
@@ -30,10 +32,17 @@ struct DelaunayCells {
 /// `alpha` times the mean `spacing` of their corners (eq. 3.15): on a square lattice of spacing dx
 /// every cell has R = dx/sqrt(2), so alpha >= 1/sqrt(2) keeps a lattice whole. A kept cell's
 /// material is that of at least two of its corners (`node_material`), else that of its first
-/// corner in node order. Fewer than three nodes, or all on a line, give no cell. Throws
-/// std::invalid_argument for a cloud that is not 2D, spans of the wrong length, an alpha or a
-/// spacing that is not a positive number, and two nodes at one position.
+/// corner in node order. Where the kept triangles around a node form two fans or more (two
+/// parts of the body touching at a node), the dropped ones of the smallest inner gap are kept
+/// again until it has one, so that the outline passes each node once. Fewer than three nodes, or
+/// all on a line, give no cell. Throws std::invalid_argument for a cloud that is not 2D, spans of
+/// the wrong length, an alpha or a spacing that is not a positive number, and two nodes at one
+/// position.
+/// With `every_node_in_a_cell`, a node the criterion leaves in no cell first keeps the Delaunay
+/// triangle at it with the smallest circumradius (counted as restored), so that no node is left
+/// out of the body.
 DelaunayCells delaunay_cells(const PointCloud& nodes, std::span<const double> spacing,
-                             std::span<const std::int32_t> node_material, double alpha);
+                             std::span<const std::int32_t> node_material, double alpha,
+                             bool every_node_in_a_cell = false);
 
 }  // namespace rktsph

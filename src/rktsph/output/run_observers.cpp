@@ -80,7 +80,23 @@ JsonValue moving_configuration_summary(const Simulation& simulation,
   summary.set("cells", std::move(cells));
   summary.set("reseeded_stress_points", 0);
   summary.set("fallback_gradient_rows", simulation.step().operators().fallback_rows);
-  summary.set("neighbour_searches", simulation.step().neighbour_searches());
+  const CellForming& forming = simulation.assembly().cell_forming();
+  summary.set("neighbour_searches",
+              simulation.step().neighbour_searches() + forming.earlier_neighbour_searches);
+  // Cells formed again from the moving nodes (docs/theory.md §9.17); zeros for the start's cells.
+  JsonValue formed = JsonValue::object();
+  formed.set("policy", simulation.assembly().forms_cells() ? "reformed" : "moving");
+  formed.set("formings", forming.formings);
+  formed.set("cells_formed", forming.cells_formed);
+  formed.set("triangles_dropped", forming.triangles_dropped);
+  formed.set("triangles_restored", forming.triangles_restored);
+  formed.set("cells_now", forming.formings > 0 ? forming.cells_now : nodes.stress_points.size());
+  formed.set("isolated_nodes", forming.isolated_nodes);
+  formed.set("narrowest_cell_ratio", forming.narrowest_cell_ratio);
+  formed.set("divided_steps", forming.divided_steps);
+  formed.set("most_parts", forming.most_parts);
+  formed.set("seconds", forming.seconds);
+  summary.set("cell_forming", std::move(formed));
   summary.set("detected_free_surface", std::move(surface));
   JsonValue walls = JsonValue::object();
   walls.set("nodes_in_contact", simulation.boundary_conditions().nodes_in_contact());
@@ -465,7 +481,7 @@ void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,
   summary.set("particle_steps_per_second",
               wall > 0.0 ? nodes * static_cast<double>(state.step) / wall : 0.0);
   summary.set("sph_nodes", simulation.nodes().sph_nodes.size());
-  summary.set("stress_points", simulation.nodes().stress_points.size());
+  summary.set("stress_points", simulation.cells().stress_points.size());
   summary.set("boundary_nodes", simulation.step().operators().boundary_nodes.size());
   summary.set("threads", omp_get_max_threads());
   set_program(summary);
@@ -476,12 +492,14 @@ void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,
     if (std::string energy = energy_closure_warning(energy_->totals()); !energy.empty())
       warnings.push_back(std::move(energy));
   summary.set("warnings", std::move(warnings));
-  const StepTimeSplit split = simulation.step().time_split();
+  StepTimeSplit split = simulation.assembly().cell_forming().earlier_steps;
+  split += simulation.step().time_split();
   JsonValue step_time = JsonValue::object();
   step_time.set("cell_lists_seconds", split.cell_lists);
   step_time.set("operator_tables_seconds", split.operator_tables);
   step_time.set("surface_seconds", split.surface);
   step_time.set("integration_seconds", split.integration);
+  step_time.set("cell_forming_seconds", simulation.assembly().cell_forming().seconds);
   summary.set("step_time", std::move(step_time));
   if (const PressureProjection* projection = simulation.pressure_projection()) {
     const SolverStatistics& stats = projection->statistics();

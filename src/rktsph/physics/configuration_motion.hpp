@@ -32,20 +32,46 @@ struct CellQuality {
   /// Cells whose area is zero or negative: inverted, nodes crossed (the run stops, §9.1).
   std::size_t inverted_cells = 0;
   std::int32_t first_inverted_cell = -1;
+  /// Smallest ratio of a corner's Jacobian to the one it had when its cell was formed (1D: of a
+  /// cell's length): what sets off forming the cells again (docs/theory.md §9.17).
+  double smallest_corner_ratio = 1.0;
+  /// Largest such ratio: a cell stretched so far that its corners leave the support its stencil
+  /// was given when it was formed (§9.17).
+  double largest_corner_ratio = 1.0;
+  /// Formed cells: the largest ratio of a cell's squared reach (centroid to farthest corner) to its
+  /// value at forming. A cell drawn out at constant area keeps its corner Jacobians and still
+  /// leaves the support its stencil was given (§4.8, §9.17).
+  double largest_reach_ratio = 1.0;
+  /// The narrowest cell's width now [m] (formed cells only, else 0): where it is below the width
+  /// that set dt, the loop divides the step (docs/theory.md §2.5, §9.17).
+  double narrowest_width = 0.0;
 };
 
 inline constexpr double kDistortedCornerRatio = 0.2;
 
+/// Cells formed again from the moving nodes (docs/theory.md §9.17): the positions the
+/// displacement is measured from (the start's) and each node's volume when they were formed.
+struct CellFormation {
+  const PointCloud* origin = nullptr;
+  std::vector<double> node_volume;
+};
+
 class ConfigurationMotion {
  public:
-  /// Moves the cells of `reference` (its cell complex).
-  explicit ConfigurationMotion(const NodeSets& reference);
+  /// Moves the cells of `reference` (its cell complex). Cells formed again from the moving nodes
+  /// (`formation`, docs/theory.md §9.17) are held in `reference` at their positions of forming;
+  /// the displacement is then measured from the formation's origin, and the volumes of the nodes
+  /// grow from theirs at forming (eq. 9.11).
+  explicit ConfigurationMotion(const NodeSets& reference, const CellFormation* formation = nullptr);
 
   /// Places node i at X_i + u_i and each stress point at the mean of its corners; sets each
   /// cell's volume to its reference volume times its area ratio, and each node's to its reference
-  /// volume times the area ratio of the cells around it. Reports the cells' quality.
+  /// volume times the area ratio of the cells around it (formed cells: each cell's to its area,
+  /// each node's to its volume at forming times that ratio, eq. 9.11). Reports the cells' quality.
   void move(const FieldArray& displacement, Configuration& configuration);
 
+  /// True for cells formed again from the moving nodes (§9.17).
+  bool formed() const { return formed_; }
   /// The cells' quality after the last move.
   const CellQuality& quality() const { return quality_; }
   /// V / V_0 of each SPH node after the last move (1 before the first).
@@ -53,6 +79,10 @@ class ConfigurationMotion {
 
  private:
   const NodeSets& reference_;  // its cells: corners, cells at each node, reference measures
+  const PointCloud& origin_;   // where the displacement is measured from
+  bool formed_;                // cells formed again (§9.17)
+  std::vector<double> base_node_volume_;  // formed cells: each node's volume at forming
+  std::vector<double> reference_reach_;   // formed cells: each cell's squared reach at forming
   std::vector<std::array<double, kMaxCellCorners>> reference_corner_jacobian_;
   std::vector<double> cell_area_;                 // current measure of each cell [m^d]
   std::vector<double> reference_node_cell_area_;  // sum of the reference areas of node n's cells

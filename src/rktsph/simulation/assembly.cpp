@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <utility>
 
 #include "rktsph/case/computed_defaults.hpp"
+#include "rktsph/geometry/formed_node_sets.hpp"
 #include "rktsph/geometry/triangle_mesher.hpp"
 #include "rktsph/geometry/triangle_node_sets.hpp"
 #include "rktsph/materials/material_factory.hpp"
@@ -207,6 +209,18 @@ void refuse_checkerboard_on_triangles(const CaseDescription& description) {
                    "0 or no key with geometry.cells: triangles");
 }
 
+// Each node's spacing on the cells of the start, for the alpha criterion (eq. 3.15): dx on a
+// lattice, on triangles its own length (its stencil's h over h_over_dx, §4.8).
+std::vector<double> start_node_spacing(const NodeSets& nodes, double h_over_dx) {
+  if (nodes.on_lattice()) return std::vector<double>(nodes.sph_nodes.size(), nodes.spacing);
+  std::vector<double> node_h, point_h;
+  cell_smoothing_lengths(nodes.cells, nodes.sph_nodes, nodes.stress_points, h_over_dx, node_h,
+                         point_h);
+  for (double& h : node_h)
+    h /= h_over_dx;
+  return node_h;
+}
+
 }  // namespace
 
 double bending_mode_shape(double xi, double length) {
@@ -284,7 +298,10 @@ std::string Assembly::time_step_origin(const std::vector<std::string>& material_
   return fmt::format(
       "dt = numerics.courant {} x {} {} m / c_p {:.4g} m/s of material '{}' "
       "(young_modulus {}, density {})",
-      numerics.courant, nodes_.on_lattice() ? "geometry.spacing" : "the smallest cell's width",
+      numerics.courant,
+      forms_cells()         ? "the narrowest formed cell's width"
+      : nodes_.on_lattice() ? "geometry.spacing"
+                            : "the smallest cell's width",
       courant_length_, model_->max_wave_speed(), material_names[stiffest],
       material.elastic().young_modulus, material.density());
 }
@@ -337,6 +354,15 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
   // On a lattice the cells' width is dx; elsewhere the smallest cell sets the step (§2.5).
   courant_length_ =
       nodes_.on_lattice() ? nodes_.spacing : smallest_cell_width(nodes_.cells, nodes_.sph_nodes);
+  if (forms_cells()) {
+    // Formed cells are triangles: the step is stable up to the Courant number of their narrowest
+    // one (§2.5, §9.17; a lattice's Delaunay triangles are dx/sqrt 2 wide), so dt is set by the
+    // cells formed at the start.
+    node_spacing_ = start_node_spacing(nodes_, description_.numerics.h_over_dx);
+    const DelaunayCells start = delaunay_cells(nodes_.sph_nodes, node_spacing_,
+                                               nodes_.node_material, numerics.reform_alpha);
+    courant_length_ = std::min(courant_length_, smallest_cell_width(start.cells, nodes_.sph_nodes));
+  }
   // dt = C dx / c_p (docs/theory.md §2.5), constant but for a shorter last step: the operators
   // are fixed. Both checked before the operators are built.
   time_step_ = numerics.time_step ? *numerics.time_step
@@ -372,7 +398,7 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
       strain_hourglass_stiffness(numerics, time_step_ * model_->max_wave_speed() / courant_length_);
   const double patch = patch_stiffness(description_);
   if (patch > 0.0) {
-    if (registered_->operator_policy != OperatorPolicy::ReferenceConfiguration)
+    if (registered_->operator_policy != OperatorPolicy::ReferenceConfiguration && !forms_cells())
       throw InputError(numerics.where, "numerics.hourglass.patch_stiffness",
                        fmt::format("{}", patch),
                        "the patch strain stiffness fits the cells of the reference "
@@ -390,6 +416,7 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
                            state_.configuration.point_smoothing_length);
   StepOperatorBuilder builder(nodes_, options, conditions_->mirror_planes(),
                               conditions_->mirror_axes());
+  step_options_ = options;
   step_ = std::make_unique<RkTaylorStep>(*model_, nodes_, options, std::move(builder),
                                          registered_->operator_policy, *conditions_,
                                          state_.configuration);
@@ -415,6 +442,7 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
     step_->set_projection(projection_.get());
   }
   initialise_state();
+  if (forms_cells()) form_cells();
 }
 
 namespace {
@@ -506,6 +534,186 @@ void Assembly::initialise_state() {
   add_initial_motion();
   conditions_->apply(0.0, state_.fields);
   step_->set_initial_state(state_);
+}
+
+namespace {
+// A node in no cell has no stress point to take its gradients from: the run stops with where and
+// why (docs/theory.md §9.17) rather than integrate it on nothing.
+void refuse_isolated_nodes(const FormedNodeSets& made, const State& state, double alpha) {
+  if (made.count.isolated_nodes == 0) return;
+  std::size_t first = 0;
+  while (!made.nodes.cells.cells_of(first).empty())
+    ++first;
+  throw RunError(fmt::format(
+      "forming the cells again at step {} (t = {:.6g} s) left {} node(s) in no cell, first the "
+      "node at {}: every Delaunay triangle at it is larger than numerics.cells.alpha = {} times "
+      "its corners' spacing (eq. 3.15), so it has left the body, and a node apart from the body "
+      "has no stress point to take its gradients from (docs/theory.md §9.17). A larger alpha "
+      "keeps it in the body",
+      state.step, state.time, made.count.isolated_nodes,
+      describe_point(made.nodes.sph_nodes, first), alpha));
+}
+}  // namespace
+
+StepOptions Assembly::formed_cell_options() const {
+  // Formed cells are triangles: no Flanagan-Belytschko stiffness (it needs quadrilaterals), and
+  // the patch strain stiffness of triangles (eq. 3.12), fitted on the cells as they are formed,
+  // unless the case takes the strain stiffness instead (§3.4, §9.17).
+  const NumericsSpec& numerics = description_.numerics;
+  StepOptions options = step_options_;
+  options.hourglass_stiffness = {};
+  const double beta = numerics.patch_stiffness.value_or(
+      numerics.strain_hourglass_stiffness > 0.0 ? 0.0 : kDefaultTrianglePatchStiffness);
+  if (beta > 0.0) {
+    options.strain_hourglass_stiffness = beta;
+    options.strain_control = StrainControl::Patch;
+  }
+  return options;
+}
+
+bool Assembly::forms_cells() const {
+  return description_.numerics.cell_policy == CellPolicy::Reformed &&
+         registered_->operator_policy == OperatorPolicy::CurrentConfiguration &&
+         nodes_.dimension == 2;
+}
+
+int Assembly::step_parts() const {
+  if (!forms_cells()) return 1;
+  const ConfigurationMotion* motion = step_->motion();
+  const double width = motion ? motion->quality().narrowest_width : 0.0;
+  if (!(width > 0.0) || width >= courant_length_) return 1;
+  // Bounded so that a cell crushed to nothing stops the run at its fold, not in a billion parts.
+  return static_cast<int>(std::min(std::ceil(courant_length_ / width), 64.0));
+}
+
+bool Assembly::cells_need_forming() const {
+  if (!forms_cells()) return false;
+  const ConfigurationMotion* motion = step_->motion();
+  // A corner squeezed below the ratio, or one stretched beyond its inverse, or a cell drawn out
+  // that far (§9.17).
+  const double ratio = description_.numerics.reform_corner_ratio;
+  if (!motion) return false;
+  const CellQuality& quality = motion->quality();
+  return quality.smallest_corner_ratio < ratio || quality.largest_corner_ratio * ratio > 1.0 ||
+         quality.largest_reach_ratio * ratio > 1.0;
+}
+
+void Assembly::form_cells() {
+  form_cells_at(state_.configuration.sph_nodes, state_.fields);
+}
+
+void Assembly::form_cells_at(const PointCloud& formation, const FieldArray& fields) {
+  const auto start = std::chrono::steady_clock::now();
+  Configuration& configuration = state_.configuration;
+  // Each node's spacing now: its spacing at the start stretched as its volume has (eq. 3.15), so
+  // that a body that stretches keeps its cells and a node that leaves it does not.
+  std::vector<double> spacing(node_spacing_.size());
+  for (std::size_t i = 0; i < spacing.size(); ++i)
+    spacing[i] = node_spacing_[i] * std::sqrt(formation.volume[i] / nodes_.sph_nodes.volume[i]);
+  FormedNodeSets made =
+      form_node_sets(nodes_, formation, spacing, description_.numerics.reform_alpha);
+  refuse_isolated_nodes(made, state_, description_.numerics.reform_alpha);
+  ++forming_.formings;
+  forming_.cells_formed += static_cast<long>(made.nodes.cells.cell_count());
+  forming_.triangles_dropped += static_cast<long>(made.count.dropped);
+  forming_.triangles_restored += static_cast<long>(made.count.restored);
+  forming_.cells_now = made.nodes.cells.cell_count();
+  forming_.isolated_nodes = made.count.isolated_nodes;
+  forming_.narrowest_cell_ratio =
+      std::min(forming_.narrowest_cell_ratio,
+               smallest_cell_width(made.nodes.cells, made.nodes.sph_nodes) / courant_length_);
+  auto formed = std::make_unique<NodeSets>(std::move(made.nodes));
+
+  // The configuration on the new cells: the nodes where they were formed, with their volumes
+  // (eq. 9.11); stress points at the centroids with the cells' areas; each point's h from its
+  // cell (§4.8).
+  formation_volume_ = formation.volume;
+  if (&formation != &configuration.sph_nodes) configuration.sph_nodes = formation;
+  configuration.stress_points = formed->stress_points;
+  for (std::size_t p = 0; p < formed->cells.cell_count(); ++p)
+    configuration.stress_points.volume[p] = formed->cells.reference_measure(p);
+  cell_smoothing_lengths(formed->cells, configuration.sph_nodes, configuration.stress_points,
+                         step_options_.h_over_dx, configuration.node_smoothing_length,
+                         configuration.point_smoothing_length);
+  const CellFormation cell_formation{&nodes_.sph_nodes, formation_volume_};
+
+  auto conditions = std::make_unique<BoundaryConditions>(description_.boundary_conditions, *formed,
+                                                         groups_, *model_);
+  const StepOptions options = formed_cell_options();
+  StepOperatorBuilder builder(*formed, options, conditions->mirror_planes(),
+                              conditions->mirror_axes());
+  if (step_) {
+    forming_.earlier_steps += step_->time_split();
+    forming_.earlier_neighbour_searches += step_->neighbour_searches();
+  }
+  auto step = std::make_unique<RkTaylorStep>(*model_, *formed, options, std::move(builder),
+                                             registered_->operator_policy, *conditions,
+                                             configuration, &cell_formation);
+  step->set_moving_surface(conditions.get());
+  // The cells' generalised forces belong to the cells that are gone: the new ones start free.
+  if (step->carries_cell_forces())
+    state_.hourglass_force = FieldArray(2, formed->stress_points.size());
+  // The controls start on the new cells from the fields of the forming (eq. 3.8), kept so that a
+  // restart starts them alike.
+  State at_forming;
+  at_forming.fields = fields;
+  at_forming.displacement = FieldArray(nodes_.dimension, nodes_.sph_nodes.size());
+  for (int a = 0; a < nodes_.dimension; ++a) {
+    const auto axis = static_cast<std::size_t>(a);
+    for (std::size_t i = 0; i < nodes_.sph_nodes.size(); ++i)
+      at_forming.displacement(a, i) =
+          formation.position[axis][i] - nodes_.sph_nodes.position[axis][i];
+  }
+  step->set_initial_state(at_forming);
+  formation_fields_ = std::move(at_forming.fields);
+  step_ = std::move(step);  // before the conditions and cells it refers to are replaced
+  conditions_ = std::move(conditions);
+  formed_ = std::move(formed);
+  forming_.seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void Assembly::save_cell_forming(CheckpointOut& out) const {
+  out.put_u32(formed_ ? 1u : 0u);
+  if (!formed_) return;
+  // Where the cells were last formed: forming them again there gives the same cells (§9.17).
+  for (int a = 0; a < nodes_.dimension; ++a)
+    out.put_doubles(formed_->sph_nodes.position[static_cast<std::size_t>(a)]);
+  out.put_doubles(formation_volume_);
+  out.put_fields(formation_fields_);
+  for (const long count : {forming_.formings, forming_.cells_formed, forming_.triangles_dropped,
+                           forming_.triangles_restored, forming_.divided_steps,
+                           static_cast<long>(forming_.most_parts)})
+    out.put_i64(count);
+  out.put_f64(forming_.narrowest_cell_ratio);
+}
+
+void Assembly::restore_cell_forming(CheckpointIn& in) {
+  const bool formed = in.get_u32() == 1u;
+  if (formed != (formed_ != nullptr))
+    in.fail(formed ? "the checkpoint has cells formed again, this case does not form them"
+                   : "this case forms its cells again, the checkpoint has none");
+  if (!formed) return;
+  PointCloud formation;
+  formation.dimension = nodes_.dimension;
+  formation.resize(nodes_.sph_nodes.size());
+  for (int a = 0; a < nodes_.dimension; ++a)
+    in.get_doubles_into(formation.position[static_cast<std::size_t>(a)].data(), formation.size());
+  in.get_doubles_into(formation.volume.data(), formation.size());
+  FieldArray fields(model_->field_count(), nodes_.sph_nodes.size());
+  in.get_fields_into(fields);
+  std::array<long, 6> counts{};
+  for (long& count : counts)
+    count = in.get_i64();
+  const double narrowest = in.get_f64();
+  form_cells_at(formation, fields);
+  forming_.formings = counts[0];
+  forming_.cells_formed = counts[1];
+  forming_.triangles_dropped = counts[2];
+  forming_.triangles_restored = counts[3];
+  forming_.divided_steps = counts[4];
+  forming_.most_parts = static_cast<int>(counts[5]);
+  forming_.narrowest_cell_ratio = narrowest;
 }
 
 }  // namespace rktsph

@@ -4,6 +4,7 @@
 // before it is built. The time loop (simulation.hpp) runs what this assembles.
 #pragma once
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <string>
@@ -49,6 +50,28 @@ double stable_courant_limit(double viscosity, bool compact_stencils);
 /// initial_conditions.bending_mode of docs/input-reference.md).
 double bending_mode_shape(double xi, double length);
 
+/// What forming the cells again has done over a run (docs/theory.md §9.17): how many times, the
+/// cells formed in all and the Delaunay triangles the alpha criterion dropped in all, the cells
+/// now, and the wall time it took.
+struct CellForming {
+  long formings = 0;
+  long cells_formed = 0;
+  long triangles_dropped = 0;
+  long triangles_restored = 0;  ///< dropped ones kept again to join fans (§3.9)
+  std::size_t cells_now = 0;
+  std::size_t isolated_nodes = 0;  ///< in no cell at the last forming
+  /// The narrowest formed cell's width over the one that set dt (below 1: a forming made the
+  /// step's Courant number larger than the case's, §9.17).
+  double narrowest_cell_ratio = 1.0;
+  double seconds = 0.0;
+  /// The step's time split of the steps before the last forming (a new step starts its own).
+  StepTimeSplit earlier_steps;
+  long earlier_neighbour_searches = 0;
+  /// Steps taken in parts, and the most parts of one step (step_parts()).
+  long divided_steps = 0;
+  int most_parts = 1;
+};
+
 class Assembly {
  public:
   /// Builds everything; InputError for inconsistent input or a case above `limits`, RunError for
@@ -58,8 +81,32 @@ class Assembly {
   Assembly& operator=(const Assembly&) = delete;
 
   const CaseDescription& description() const { return description_; }
-  /// The reference configuration: stable ids, materials, cells.
+  /// The reference configuration: stable ids, materials, the cells of the start.
   const NodeSets& nodes() const { return nodes_; }
+  /// The cells the step integrates over now: those of the start, or those formed again from the
+  /// moving nodes (numerics.cells.policy: reformed), held at their positions of forming.
+  const NodeSets& cells() const { return formed_ ? *formed_ : nodes_; }
+  /// True when the case forms its cells again from the moving nodes (docs/theory.md §9.17).
+  bool forms_cells() const;
+  /// True when a cell has distorted past numerics.cells.reform_below since it was formed.
+  bool cells_need_forming() const;
+  /// Forms the cells again from the nodes where they are, and the conditions and the step on
+  /// them; the state (on the nodes) is kept. RunError where no valid cells can be formed.
+  void form_cells();
+  const CellForming& cell_forming() const { return forming_; }
+  /// Where the cells were last formed, and the forming counts: a restart forms the same cells.
+  void save_cell_forming(CheckpointOut& out) const;
+  /// Reads what save_cell_forming wrote and forms the cells there (before the configuration is
+  /// restored); CheckpointIn::fail where the checkpoint and the case disagree.
+  void restore_cell_forming(CheckpointIn& in);
+  /// How many equal parts the next step is taken in: 1, or with formed cells narrower than the
+  /// width that set dt, enough that none of them sees a larger Courant number than the case's
+  /// (docs/theory.md §2.5, §9.17).
+  int step_parts() const;
+  void count_divided_step(int parts) {
+    ++forming_.divided_steps;
+    forming_.most_parts = std::max(forming_.most_parts, parts);
+  }
   const std::map<std::string, std::vector<std::int32_t>>& groups() const { return groups_; }
   const PhysicsModel& model() const { return *model_; }
   const RegisteredModel& registered_model() const { return *registered_; }
@@ -79,6 +126,12 @@ class Assembly {
 
  private:
   void initialise_state();
+  /// The step's options on formed cells (triangles): their zero-energy control (§9.17).
+  StepOptions formed_cell_options() const;
+  /// Forms the cells from the nodes at `formation` (positions and volumes) and builds the
+  /// conditions and the step on them, its controls started from `fields`; the configuration's
+  /// nodes are set to `formation`.
+  void form_cells_at(const PointCloud& formation, const FieldArray& fields);
   /// initial_conditions.stress, on top of the geostatic stress.
   void add_initial_stress();
   /// initial_conditions.angular_velocity and bending_mode, on top of the uniform velocity.
@@ -88,6 +141,12 @@ class Assembly {
 
   CaseDescription description_;
   NodeSets nodes_;
+  std::unique_ptr<NodeSets> formed_;      // the cells formed again, or null (§9.17)
+  std::vector<double> node_spacing_;      // each node's spacing at the start, for eq. 3.15
+  std::vector<double> formation_volume_;  // the nodes' volumes when the cells were last formed
+  FieldArray formation_fields_;           // the fields then: the controls' start (eq. 3.8)
+  StepOptions step_options_;
+  CellForming forming_;
   std::map<std::string, std::vector<std::int32_t>> groups_;
   const RegisteredModel* registered_ = nullptr;
   std::unique_ptr<PhysicsModel> model_;

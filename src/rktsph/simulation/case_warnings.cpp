@@ -48,9 +48,25 @@ std::optional<CaseWarning> narrow_cell_warning(const NodeSets& nodes, const Geom
                               "them apart if that is not meant")};
 }
 
+std::optional<CaseWarning> formed_cells_stiffness_warning(const Simulation& simulation) {
+  const NumericsSpec& numerics = simulation.description().numerics;
+  if (!simulation.assembly().forms_cells() || !numerics.hourglass_stiffness ||
+      !(*numerics.hourglass_stiffness > 0.0))
+    return std::nullopt;
+  return CaseWarning{
+      numerics.where, "numerics.hourglass.stiffness",
+      fmt::format("{}", *numerics.hourglass_stiffness),
+      "acts on the hourglass modes of quadrilaterals, and with numerics.cells.policy: reformed the "
+      "cells are triangles formed from the nodes: it does not act; the patch stiffness "
+      "(numerics.hourglass.patch_stiffness) controls the triangles' soft modes (docs/theory.md "
+      "§9.17)"};
+}
+
 std::vector<CaseWarning> case_warnings(const Simulation& simulation) {
   std::vector<CaseWarning> warnings =
       plausibility_warnings(simulation.description(), simulation.time_step());
+  if (auto stiffness = formed_cells_stiffness_warning(simulation))
+    warnings.push_back(std::move(*stiffness));
   // Only a Courant step follows the narrowest cell; a fixed numerics.time_step does not.
   if (simulation.description().numerics.time_step) return warnings;
   if (auto narrow = narrow_cell_warning(simulation.nodes(), simulation.description().geometry,

@@ -23,7 +23,11 @@ inline constexpr double kNarrowCellRatio = 5.0;
 std::optional<CaseWarning> narrow_cell_warning(const NodeSets& nodes, const GeometrySpec& geometry,
                                                double time_step);
 
-/// The case's plausibility warnings and its mesh's, in that order.
+/// numerics.hourglass.stiffness given with cells formed again: it acts on quadrilaterals, and
+/// formed cells are triangles (docs/theory.md §9.17). None otherwise.
+std::optional<CaseWarning> formed_cells_stiffness_warning(const Simulation& simulation);
+
+/// The case's plausibility warnings, the formed cells' and its mesh's, in that order.
 std::vector<CaseWarning> case_warnings(const Simulation& simulation);
 
 }  // namespace rktsph

@@ -32,7 +32,7 @@ std::array<Vec3, 3> total_stress(const PhysicsModel& model, const FieldArray& va
 // gathers (the node's share of each); 1 in 1D.
 double facet_area(const Simulation& simulation, const SurfaceSet& surface, std::int32_t node,
                   std::int32_t f) {
-  const NodeSets& nodes = simulation.nodes();
+  const NodeSets& nodes = simulation.cells();  // the outline the surface's facets index
   if (nodes.dimension == 1) return 1.0;
   const PointCloud& current = simulation.state().configuration.sph_nodes;
   const auto i = static_cast<std::size_t>(node);

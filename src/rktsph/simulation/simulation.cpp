@@ -111,6 +111,41 @@ void Simulation::keep_state_before_step() {
     before_step_.configuration = now.configuration;
 }
 
+void Simulation::advance_in_parts(double dt) {
+  // One step of the loop, in equal parts where formed cells are narrower than the width that set
+  // dt (§9.17); the state counts it as one step and ends it at t + dt to the bit.
+  const int parts = assembly_.step_parts();
+  if (parts == 1) {
+    step().advance(state(), dt);
+    return;
+  }
+  const double end = state().time + dt;
+  const long step_index = state().step;
+  for (int k = 0; k < parts; ++k)
+    step().advance(state(), dt / parts);
+  state().time = end;
+  state().step = step_index + 1;
+  assembly_.count_divided_step(parts);
+}
+
+void Simulation::take_step() {
+  advance_in_parts(step_length(state().step));
+  if (assembly_.cells_need_forming()) assembly_.form_cells();
+}
+
+bool Simulation::form_cells_if_distorted() {
+  // Between whole steps, so that every step integrates over one set of cells (§9.17).
+  if (!assembly_.cells_need_forming()) return true;
+  try {
+    assembly_.form_cells();
+  } catch (const std::exception& error) {
+    message_ = fmt::format("failed after step {} (t = {:.6g} s): {}", state().step, state().time,
+                           error.what());
+    return false;
+  }
+  return true;
+}
+
 RunStatus Simulation::run() {
   const auto start = std::chrono::steady_clock::now();
   RunStatus status = RunStatus::Completed;
@@ -134,7 +169,7 @@ RunStatus Simulation::run() {
     if (!(dt > 0.0)) break;  // the round-off of t += dt already reached time.end
     keep_state_before_step();
     try {
-      step().advance(state(), dt);
+      advance_in_parts(dt);
     } catch (const std::exception& error) {  // e.g. a pressure solve that does not converge
       message_ = fmt::format("failed at step {} (t = {:.6g} s): {}", state().step + 1,
                              state().time + dt, error.what());
@@ -155,6 +190,10 @@ RunStatus Simulation::run() {
           state().step, state().time, problem);
       status = RunStatus::Diverged;
       stopped_in_step_ = true;
+      break;
+    }
+    if (!form_cells_if_distorted()) {
+      status = RunStatus::Failed;
       break;
     }
     wall_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -178,6 +217,7 @@ void Simulation::save_checkpoint(CheckpointOut& out) const {
   out.put_i64(state().step);
   for (const FieldArray* array : state().arrays())
     out.put_fields(*array);
+  assembly_.save_cell_forming(out);
   save_configuration(out, state().configuration);
   assembly_.step().save_checkpoint(out);
   if (assembly_.projection()) assembly_.projection()->save_checkpoint(out);
@@ -190,8 +230,10 @@ void Simulation::restore_checkpoint(CheckpointIn& in) {
     in.fail(fmt::format("step {} outside this run's 0 to {}", state().step, total_steps()));
   for (FieldArray* array : state().arrays())
     in.get_fields_into(*array);
+  assembly_.restore_cell_forming(in);  // before the configuration, whose sizes it sets
   restore_configuration(in, state().configuration);
   assembly_.step().restore_checkpoint(in);
+  assembly_.step().follow_restored_state(state());
   if (assembly_.projection()) assembly_.projection()->restore_checkpoint(in);
   resumed_ = true;
 }

@@ -53,6 +53,10 @@ class Simulation final : public Checkpointed {
   explicit Simulation(CaseDescription description, SimulationLimits limits = {});
 
   void add_observer(Observer& observer) { observers_.push_back(&observer); }
+  /// One step of the loop without its checks and observers (tests, benchmarks): the step (in
+  /// parts where formed cells are narrow), then the cells formed again where they have distorted
+  /// (docs/theory.md §9.17). Throws what the step or the forming throws.
+  void take_step();
   void set_stop_check(StopCheck check) { stop_check_ = std::move(check); }
   /// Runs to the end time. A value that is not finite or beyond the model's divergence bound stops
   /// the run with status Diverged and a message naming the step, time, field, node and position;
@@ -71,6 +75,8 @@ class Simulation final : public Checkpointed {
   /// The reference configuration (stable ids, materials, cells); the current one is
   /// state().configuration.
   const NodeSets& nodes() const { return assembly_.nodes(); }
+  /// The cells the step integrates over now (Assembly::cells()).
+  const NodeSets& cells() const { return assembly_.cells(); }
   const std::map<std::string, std::vector<std::int32_t>>& groups() const {
     return assembly_.groups();
   }
@@ -127,6 +133,11 @@ class Simulation final : public Checkpointed {
   bool stopped_early_ = false;
   /// Copies into before_step_ what the next step will change.
   void keep_state_before_step();
+  /// Forms the cells again where they have distorted (Assembly::cells_need_forming); false, with
+  /// the message, when that fails.
+  bool form_cells_if_distorted();
+  /// Advances one step of length dt, in Assembly::step_parts() equal parts.
+  void advance_in_parts(double dt);
   State before_step_;  ///< the state before the current step (state_before_stop)
   bool stopped_in_step_ = false;
 };

@@ -29,7 +29,7 @@ std::vector<std::uint8_t> body_perimeter(const NodeSets& nodes) {
 }
 
 SurfaceAgreement compare_with_perimeter(const Simulation& simulation, const FreeSurface& detected) {
-  const std::vector<std::uint8_t> perimeter = body_perimeter(simulation.nodes());
+  const std::vector<std::uint8_t> perimeter = body_perimeter(simulation.cells());
   SurfaceAgreement agreement;
   for (std::size_t i = 0; i < perimeter.size(); ++i) {
     agreement.perimeter_nodes += perimeter[i];

@@ -33,8 +33,10 @@ std::string describe_unreached_node(const PointCloud& nodes, std::int32_t node) 
   return fmt::format(
       "the SPH node at {} lies out of reach of every stress point around it (its cells are "
       "crushed or stretched so far that none of them weighs it, so its velocity has nothing to "
-      "update it): with the large-deformation model the cells are those of the start and cannot "
-      "follow a flow this large (docs/theory.md §9.12); a finer lattice fails sooner, not later. "
+      "update it): its cells cannot follow a flow this large. With the cells of the start a "
+      "finer lattice fails sooner, not later (docs/theory.md §9.12); numerics.cells.policy: "
+      "reformed forms the cells again as the body flows (§9.17), and formed cells fail so only "
+      "where the flow stretches them faster than numerics.cells.reform_below forms them again. "
       "Stop the run before this deformation (time.end), lower the imposed velocity or load, or "
       "give the soil more strength where it flows",
       describe_point(nodes, static_cast<std::size_t>(node)));

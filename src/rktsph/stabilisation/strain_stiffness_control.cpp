@@ -33,10 +33,32 @@ void StrainStiffnessControl::follow_flow(const CellComplex& cells,
     flow_strength_factors(cells, near_flow_, flowing, plastic_fraction, scratch, factor_);
 }
 
+void StrainStiffnessControl::start(const State& state) {
+  stiffness_.set_reference(state.fields);
+  // On cells formed again the patches are the new cells': the strain they fit is that of the
+  // displacement since the forming, which the cells have followed, not since the start, which a
+  // large deformation has made non-linear on them (docs/theory.md §9.17).
+  const FieldArray& u = state.displacement;
+  const bool moved =
+      std::any_of(u.data().begin(), u.data().end(), [](double x) { return x != 0.0; });
+  if (!moved) return;
+  start_displacement_ = u;
+  since_start_ = FieldArray(u.field_count(), u.point_count());
+}
+
 void StrainStiffnessControl::correct_half_step(const State& state, const FieldArray& point_gradient,
                                                double dt, FieldArray& half_step) {
-  stiffness_.add_stress(model_, to_points_, nodes_.cells.materials(), state.displacement,
-                        state.strain, point_gradient, dt, state.fields, factor_, half_step);
+  const FieldArray* displacement = &state.displacement;
+  if (since_start_.point_count() > 0) {
+    const std::vector<double>& now = state.displacement.data();
+    const std::vector<double>& start = start_displacement_.data();
+    std::vector<double>& since = since_start_.data();
+    for (std::size_t k = 0; k < since.size(); ++k)
+      since[k] = now[k] - start[k];
+    displacement = &since_start_;
+  }
+  stiffness_.add_stress(model_, to_points_, nodes_.cells.materials(), *displacement, state.strain,
+                        point_gradient, dt, state.fields, factor_, half_step);
 }
 
 void StrainStiffnessControl::record_strain_rate(const FieldArray& node_gradient, double dt,

@@ -31,7 +31,9 @@ class StrainStiffnessControl final : public ZeroEnergyControl {
   /// The patch form follows viscoplastic flow (eq. 3.14) where a material can flow.
   bool follows_flow() const override { return !factor_.empty(); }
   bool carries_received_strain() const override { return stiffness_.needs_received_strain(); }
-  void start(const State& state) override { stiffness_.set_reference(state.fields); }
+  /// The fields and the displacement of the start: at t = 0, or when the cells were formed again
+  /// (docs/theory.md §9.17), from which the control measures the displacement.
+  void start(const State& state) override;
   void follow_flow(const CellComplex& cells, std::span<const std::uint8_t> flowing,
                    double plastic_fraction, std::span<std::uint8_t> scratch) override;
   void correct_half_step(const State& state, const FieldArray& point_gradient, double dt,
@@ -45,6 +47,10 @@ class StrainStiffnessControl final : public ZeroEnergyControl {
   StrainHourglassStiffness stiffness_;
   std::vector<double> near_flow_;  // r_P of the patch form (eq. 3.14)
   std::vector<double> factor_;     // of the patch form, empty unless it follows flow (eq. 3.14)
+  // Cells formed again (§9.17): the displacement at forming, and the scratch of the displacement
+  // since; both empty while the start's displacement is zero.
+  FieldArray start_displacement_;
+  FieldArray since_start_;
 };
 
 }  // namespace rktsph

@@ -8,10 +8,12 @@
 
 namespace rktsph {
 
-MovingConfiguration::MovingConfiguration(const PhysicsModel& model, const NodeSets& reference)
+MovingConfiguration::MovingConfiguration(const PhysicsModel& model, const NodeSets& reference,
+                                         const CellFormation* formation)
     : model_(model),
       reference_(reference),
-      motion_(reference),
+      origin_(formation ? *formation->origin : reference.sph_nodes),
+      motion_(reference, formation),
       predicted_nodes_(reference.sph_nodes) {}
 
 void MovingConfiguration::rotate_stress(const FieldArray& gradient,
@@ -76,8 +78,7 @@ void MovingConfiguration::turn_faces(const State& state, double dt) {
     const double* u = state.displacement.field(a);
     const double* v = state.fields.field(model_.velocity_field(a));
     for (std::size_t i = 0; i < ns; ++i)
-      predicted_nodes_.position[axis][i] =
-          reference_.sph_nodes.position[axis][i] + u[i] + 0.5 * dt * v[i];
+      predicted_nodes_.position[axis][i] = origin_.position[axis][i] + u[i] + 0.5 * dt * v[i];
   }
   faces_->follow_configuration(predicted_nodes_);
 }
@@ -86,25 +87,36 @@ void MovingConfiguration::after_step(State& state) {
   motion_.move(state.displacement, state.configuration);
   if (faces_) faces_->follow_configuration(state.configuration.sph_nodes);
   const CellQuality& quality = motion_.quality();
-  if (quality.inverted_cells > 0)
-    throw RunError(fmt::format(
-        "{} cell(s) of the moving configuration folded over at step {} (t = {:.6g} s), first the "
-        "cell of the stress point at {}: its nodes have crossed and its area is no longer "
-        "positive, so the cell has no volume to integrate (docs/theory.md §9.1). The cells are "
-        "those of the start and a cell beside a velocity jump of a few spacings cannot follow it "
-        "(docs/theory.md §9.12, §9.14): a finer lattice folds sooner, not later, and a smaller "
-        "time step does not help. Stop the run before this deformation (time.end), lower the "
-        "imposed velocity or load, or give the soil more strength where it flows",
-        quality.inverted_cells, state.step, state.time,
-        describe_point(state.configuration.stress_points,
-                       static_cast<std::size_t>(quality.first_inverted_cell))));
+  if (quality.inverted_cells == 0) return;
+  const std::string why =
+      motion_.formed()
+          ? "The cells were formed again from the nodes (docs/theory.md §9.17), and this one "
+            "folded "
+            "within the steps before the next forming: two of its nodes closed on each other "
+            "faster than a cell distorts past numerics.cells.reform_below, as nodes that clump in "
+            "a zero-energy mode do (§9.17). A larger reform_below forms the cells again sooner"
+          : "The cells are those of the start and a cell beside a velocity jump of a few spacings "
+            "cannot follow it (docs/theory.md §9.12, §9.14): a finer lattice folds sooner, not "
+            "later, and a smaller time step does not help. numerics.cells.policy: reformed forms "
+            "the cells again as the body flows (§9.17)";
+  throw RunError(fmt::format(
+      "{} cell(s) of the moving configuration folded over at step {} (t = {:.6g} s), first the "
+      "cell of the stress point at {}: its nodes have crossed and its area is no longer "
+      "positive, so the cell has no volume to integrate (docs/theory.md §9.1). {}. Else stop the "
+      "run before this deformation (time.end), lower the imposed velocity or load, or give the "
+      "soil more strength where it flows",
+      quality.inverted_cells, state.step, state.time,
+      describe_point(state.configuration.stress_points,
+                     static_cast<std::size_t>(quality.first_inverted_cell)),
+      why));
 }
 
 std::unique_ptr<ConfigurationPolicy> make_configuration_policy(OperatorPolicy policy,
                                                                const PhysicsModel& model,
-                                                               const NodeSets& reference) {
+                                                               const NodeSets& reference,
+                                                               const CellFormation* formation) {
   if (policy == OperatorPolicy::CurrentConfiguration)
-    return std::make_unique<MovingConfiguration>(model, reference);
+    return std::make_unique<MovingConfiguration>(model, reference, formation);
   return std::make_unique<FixedConfiguration>();
 }
 

@@ -62,7 +62,10 @@ class FixedConfiguration final : public ConfigurationPolicy {};
 /// follow, and the faces the conditions act on turn with the body.
 class MovingConfiguration final : public ConfigurationPolicy {
  public:
-  MovingConfiguration(const PhysicsModel& model, const NodeSets& reference);
+  /// `formation`: where and how the cells of `reference` were formed again from the moving nodes
+  /// (docs/theory.md §9.17); null for the cells of the start.
+  MovingConfiguration(const PhysicsModel& model, const NodeSets& reference,
+                      const CellFormation* formation = nullptr);
 
   void rotate_stress(const FieldArray& gradient, std::span<const int> velocity_gradient,
                      double interval, std::size_t count, FieldArray& values) const override;
@@ -80,15 +83,16 @@ class MovingConfiguration final : public ConfigurationPolicy {
  private:
   const PhysicsModel& model_;
   const NodeSets& reference_;
+  const PointCloud& origin_;             // where the displacement is measured from
   BoundaryConditions* faces_ = nullptr;  // the conditions whose faces turn with the body
   ConfigurationMotion motion_;
   PointCloud predicted_nodes_;  // where turn_faces puts the nodes
 };
 
 /// The policy that goes with the operators' policy: fixed with ReferenceConfiguration, moving with
-/// CurrentConfiguration.
-std::unique_ptr<ConfigurationPolicy> make_configuration_policy(OperatorPolicy policy,
-                                                               const PhysicsModel& model,
-                                                               const NodeSets& reference);
+/// CurrentConfiguration (`formation` as for MovingConfiguration).
+std::unique_ptr<ConfigurationPolicy> make_configuration_policy(
+    OperatorPolicy policy, const PhysicsModel& model, const NodeSets& reference,
+    const CellFormation* formation = nullptr);
 
 }  // namespace rktsph

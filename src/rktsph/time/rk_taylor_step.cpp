@@ -15,13 +15,13 @@ namespace rktsph {
 RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
                            const StepOptions& options, StepOperatorBuilder builder,
                            OperatorPolicy policy, const BoundaryConditions& conditions,
-                           const Configuration& configuration)
+                           const Configuration& configuration, const CellFormation* formation)
     : model_(model),
       nodes_(reference),
       options_(options),
       builder_(std::move(builder)),
       policy_(policy),
-      configuration_(make_configuration_policy(policy, model, reference)),
+      configuration_(make_configuration_policy(policy, model, reference, formation)),
       conditions_(conditions) {
   const int nf = model.field_count();
   const int nk = model.internal_count();
@@ -30,6 +30,9 @@ RkTaylorStep::RkTaylorStep(const PhysicsModel& model, const NodeSets& reference,
   const std::size_t ns = reference.sph_nodes.size();
   // On a moving configuration no two rows are alike: no sharing from the first build (§4.7).
   if (policy == OperatorPolicy::CurrentConfiguration) builder_.keep_weights_per_row();
+  // Cells formed again from a deformed body are not the case's: a stencil they leave degenerate
+  // takes the uncorrected gradient and is counted, as on a moving configuration (§9.5, §9.17).
+  if (formation) builder_.fall_back_on_degenerate_stencils();
   builder_.build(configuration, operators_);
   if (policy == OperatorPolicy::ReferenceConfiguration)
     builder_.release_buffers(operators_);  // built once: the buffers would only hold memory (§4.7)

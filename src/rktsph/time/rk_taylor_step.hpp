@@ -52,10 +52,13 @@ class StepProjection {
 class RkTaylorStep {
  public:
   /// Builds the operators on `configuration` (the initial one) with `builder`; with the policy
-  /// CurrentConfiguration they are rebuilt on the state's configuration before every step.
+  /// CurrentConfiguration they are rebuilt on the state's configuration before every step. With
+  /// cells formed again from the moving nodes, `reference` holds them at their positions of
+  /// forming and `formation` says where the displacement is measured from (docs/theory.md §9.17).
   RkTaylorStep(const PhysicsModel& model, const NodeSets& reference, const StepOptions& options,
                StepOperatorBuilder builder, OperatorPolicy policy,
-               const BoundaryConditions& conditions, const Configuration& configuration);
+               const BoundaryConditions& conditions, const Configuration& configuration,
+               const CellFormation* formation = nullptr);
 
   /// Advances `state` by dt. Allocates nothing with the policy ReferenceConfiguration.
   void advance(State& state, double dt);
@@ -101,6 +104,10 @@ class RkTaylorStep {
   /// nothing otherwise): a restart searches again from it and gets the same stencils and filter.
   void save_checkpoint(CheckpointOut& out) const;
   void restore_checkpoint(CheckpointIn& in);
+  /// After a restore: the moving configuration placed from the restored displacement again, so
+  /// that the cells' quality, which decides when they are formed again and in how many parts a
+  /// step is taken (docs/theory.md §9.17), is the run's.
+  void follow_restored_state(State& state) { configuration_->after_step(state); }
   /// The motion of the configuration (policy CurrentConfiguration), or null.
   const ConfigurationMotion* motion() const { return configuration_->motion(); }
 

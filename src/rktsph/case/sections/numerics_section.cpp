@@ -60,6 +60,31 @@ const KeyTable<NumericsSpec>& hourglass_keys() {
   return keys;
 }
 
+const KeyTable<NumericsSpec>& cell_keys() {
+  using N = NumericsSpec;
+  static const KeyTable<NumericsSpec> keys = {
+      choice_key<N, CellPolicy>(
+          "policy", &N::cell_policy,
+          {{"moving", CellPolicy::Moving}, {"reformed", CellPolicy::Reformed}},
+          "Large deformation: `moving` integrates over the cells of the start, their corners "
+          "moved with the nodes (docs/theory.md §9.1); `reformed` forms Delaunay cells of the "
+          "current nodes, trimmed by the alpha criterion, at the start and again whenever a "
+          "cell has distorted (§9.17). Ignored by the small-deformation models."),
+      number_key<N>(
+          "alpha", &N::reform_alpha, NumberRange{0.5, 10.0, true, true}, "–",
+          "α of eq. 3.15: a Delaunay triangle is a cell while its circumradius is at most "
+          "α times its corners' mean spacing (1/√2 keeps a square lattice whole; 1 also "
+          "closes the hole of one missing node)."),
+      number_key<N>("reform_below", &N::reform_corner_ratio, kUnitInterval, "–",
+                    "With policy: reformed, the cells are formed again once a corner's Jacobian "
+                    "falls below this fraction of the one it had when its cell was formed, or "
+                    "grows beyond its inverse, or a cell's squared reach (centroid to farthest "
+                    "corner) does (a stretched cell, whose corners leave the support of its "
+                    "stencil)."),
+  };
+  return keys;
+}
+
 const KeyTable<NumericsSpec>& numerics_keys() {
   using N = NumericsSpec;
   static const KeyTable<NumericsSpec> keys = {
@@ -107,6 +132,17 @@ const KeyTable<NumericsSpec>& numerics_keys() {
              }},
       number_key<N>("artificial_viscosity", &N::artificial_viscosity, NumberRange::non_negative(),
                     "–", "α of the artificial viscosity (docs/theory.md §7.1); 0 = off."),
+      Key<N>{"cells", "map", "", "see below", "",
+             "The cells of a moving configuration (large deformation, docs/theory.md §9.17).",
+             false,
+             [](const YamlNode& node, N& numerics, Reading& reading) {
+               read_keys(node, cell_keys(), numerics, reading);
+             },
+             [](YAML::Emitter& out, const N& numerics, const CaseDescription& description) {
+               out << YAML::Key << "cells" << YAML::Value << YAML::Flow << YAML::BeginMap;
+               emit_keys(out, cell_keys(), numerics, description);
+               out << YAML::EndMap;
+             }},
   };
   return keys;
 }
@@ -130,6 +166,7 @@ Key<CaseDescription> numerics_section() {
 void declare_numerics_keys(std::vector<DeclaredKey>& list) {
   declare(list, "numerics.", numerics_keys());
   declare(list, "numerics.hourglass.", hourglass_keys());
+  declare(list, "numerics.cells.", cell_keys());
 }
 
 }  // namespace rktsph

@@ -97,10 +97,12 @@ Collapse run_collapse(const ValidationContext& context, double spacing, const st
     result.runout = largest_x(current);
     // The cells tile the body (§9.1): the material's mass is that of the stress points, each of
     // density rho_0 V_0 / V and volume V.
+    // The cells the step integrates over at the end: the start's, or those formed last (§9.17).
     const PointCloud& points = state.configuration.stress_points;
-    const PointCloud& reference = simulation.nodes().stress_points;
+    const NodeSets& cells = simulation.cells();
+    const PointCloud& reference = cells.stress_points;
     for (std::size_t p = 0; p < points.size(); ++p) {
-      const double density = simulation.model().density(simulation.nodes().cells.material(p)) *
+      const double density = simulation.model().density(cells.cells.material(p)) *
                              reference.volume[p] / points.volume[p];
       result.mass += density * points.volume[p];
     }
