@@ -3,6 +3,7 @@
 // condition holds the body (a fixed base), since the detector sees only the nodes.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "rktsph/case/case_reader.hpp"
@@ -37,6 +38,42 @@ TEST(SurfaceWatch, OutlineIsEveryNodeMissingALatticeNeighbourWhateverItsConditio
   EXPECT_EQ(agreement.missed, 0u);
   EXPECT_EQ(agreement.false_positive, 0u);
   EXPECT_EQ(agreement.misflagged_fraction(), 0.0);
+}
+
+// With cells formed again the field files' surface is the outline's, where the conditions act
+// (docs/theory.md §9.17): the top face (13 nodes) and the right face below its corner (8 nodes:
+// the fixed base's corner too, whose right facet is not on the face the base condition acts on),
+// each with its face's outward normal; not the fixed base, nor the face on rollers, whose normal
+// velocity is imposed.
+TEST(SurfaceWatch, FormedCellsWriteTheTractionFreeOutlineAsTheFreeSurface) {
+  std::string text = kBlock;
+  text.replace(text.find("time:"), 5, "numerics: {cells: {policy: reformed}}\ntime:");
+  const Simulation simulation(read_case_text(text, "case.yaml"));
+  FreeSurface surface;
+  field_free_surface(simulation, surface);
+  const PointCloud& nodes = simulation.nodes().sph_nodes;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const double x = nodes.position[0][i], y = nodes.position[1][i];
+    const bool top = y > 4.0 - 1e-9, right = x > 6.0 - 1e-9;
+    EXPECT_EQ(surface.on_surface[i], top || right ? 1 : 0) << "node at " << x << ", " << y;
+    count += surface.on_surface[i];
+    if (top && !right) {
+      EXPECT_NEAR(surface.normal[1][i], 1.0, 1e-12);
+    } else if (right && !top) {
+      EXPECT_NEAR(surface.normal[0][i], 1.0, 1e-12);
+    } else if (top && right) {  // the corner: both faces' normals, summed and made unit
+      EXPECT_NEAR(surface.normal[0][i], std::sqrt(0.5), 1e-12);
+      EXPECT_NEAR(surface.normal[1][i], std::sqrt(0.5), 1e-12);
+    }
+  }
+  EXPECT_EQ(count, 21u);
+  // The cells of the start write the detector's surface, as before.
+  FreeSurface detected;
+  const Simulation moving(read_case_text(kBlock, "case.yaml"));
+  field_free_surface(moving, surface);
+  detect_current_surface(moving, detected);
+  EXPECT_EQ(surface.on_surface, detected.on_surface);
 }
 
 }  // namespace

@@ -248,7 +248,7 @@ void FieldSeriesWriter::write(const Simulation& simulation, const State& state) 
       fields.push_back({name, 1, {computed(find_quantity(simulation, name))}});
     } else if (name == "free_surface" || name == "surface_normal") {
       if (detected_time_ != state.time || detected_.on_surface.size() != n) {
-        detect_current_surface(simulation, detected_);
+        field_free_surface(simulation, detected_);
         detected_time_ = state.time;
       }
       if (name == "free_surface") {

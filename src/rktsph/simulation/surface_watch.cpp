@@ -1,5 +1,6 @@
 #include "rktsph/simulation/surface_watch.hpp"
 
+#include <cmath>
 #include <vector>
 
 #include "rktsph/boundary/surface_set.hpp"
@@ -15,6 +16,36 @@ void detect_current_surface(const Simulation& simulation, FreeSurface& out) {
   options.lattice_spacing = spacing;
   const CellList cells(nodes, 2.0 * options.smoothing_length);
   detect_free_surface(nodes, cells, options, out);
+}
+
+void outline_free_surface(const Simulation& simulation, FreeSurface& out) {
+  const std::size_t n = simulation.state().configuration.sph_nodes.size();
+  out.on_surface.assign(n, 0);
+  for (auto& component : out.normal)
+    component.assign(n, 0.0);
+  const SurfaceSet& surface = simulation.boundary_conditions().surface();
+  for (std::size_t k = 0; k < surface.size(); ++k) {
+    const auto i = static_cast<std::size_t>(surface.node[k]);
+    Vec3 sum{0.0, 0.0, 0.0};
+    for (std::int32_t f = surface.facets_begin(k); f < surface.facets_end(k); ++f) {
+      if (!surface.projected[static_cast<std::size_t>(f)]) continue;
+      const Vec3 facet = surface.facet_normal(f);
+      for (std::size_t a = 0; a < 3; ++a)
+        sum[a] += facet[a];
+    }
+    const double length = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+    if (!(length > 0.0)) continue;
+    out.on_surface[i] = 1;
+    for (std::size_t a = 0; a < 3; ++a)
+      out.normal[a][i] = sum[a] / length;
+  }
+}
+
+void field_free_surface(const Simulation& simulation, FreeSurface& out) {
+  if (simulation.assembly().forms_cells())
+    outline_free_surface(simulation, out);
+  else
+    detect_current_surface(simulation, out);
 }
 
 std::vector<std::uint8_t> body_perimeter(const NodeSets& nodes) {

@@ -19,6 +19,15 @@ inline constexpr double kDetectionSmoothingOverSpacing = 1.3;
 /// Runs the detector on the SPH nodes of the run's current configuration (2D and 1D).
 void detect_current_surface(const Simulation& simulation, FreeSurface& out);
 
+/// The free surface as the cells draw it (docs/theory.md §9.17): the nodes the conditions project
+/// traction-free (a facet with a free normal velocity), each with the unit sum of those facets'
+/// current normals. Not the nodes where a velocity is imposed (a fixed base, a footing).
+void outline_free_surface(const Simulation& simulation, FreeSurface& out);
+
+/// The surface written to the field files: with cells formed again the outline's
+/// (outline_free_surface), which the conditions act on; else the detector's.
+void field_free_surface(const Simulation& simulation, FreeSurface& out);
+
 /// The nodes on the outline of the body's cells (re-entrant corners excepted, as in the surface the
 /// conditions act on). A moving body keeps its cells, so this is its outline at any deformation
 /// (§9.1), whatever conditions act on it (a fixed base is on it too: the detector sees only the

@@ -13,6 +13,9 @@
 //   final_kinetic_energy_ratio  kinetic energy at the end over its peak (<= 1e-3: it stops).
 //   free_surface_error          nodes the detector of §9.4 misflags at the end (missed perimeter
 //                               nodes plus interior nodes flagged) over perimeter nodes (<= 0.02).
+//   volume_change               the cells' area at the end over W0 H0: the soil's change of volume
+//                               and, with cells formed again (§9.17), what the alpha criterion
+//                               leaves out or keeps (within 0.05).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -66,6 +69,7 @@ struct Collapse {
   std::vector<double> x, y;                  // node positions at the end [m]
   double runout = 0.0;                       // the front at the end: the largest x [m]
   double mass = 0.0;                         // sum of rho_P V_P at the end [kg/m]
+  double area = 0.0;                         // sum of V_P at the end: the cells' area [m^2]
   std::size_t nodes = 0;
   SurfaceAgreement surface;
 };
@@ -105,6 +109,7 @@ Collapse run_collapse(const ValidationContext& context, double spacing, const st
       const double density = simulation.model().density(cells.cells.material(p)) *
                              reference.volume[p] / points.volume[p];
       result.mass += density * points.volume[p];
+      result.area += points.volume[p];
     }
     FreeSurface detected;
     detect_current_surface(simulation, detected);
@@ -218,7 +223,10 @@ std::vector<CheckResult> validate_ld_slope_low_cohesion(const ValidationContext&
           check_at_least("runout_ratio", finest.runout / block.runout_bound(), 1.0, 1.0, "1"),
           check_at_most("final_kinetic_energy_ratio", kinetic_ratio, 0.0, 1e-3, "fraction"),
           check_at_most("free_surface_error", finest.surface.misflagged_fraction(), 0.0, 0.02,
-                        "fraction")};
+                        "fraction"),
+          // 5 %: the bound.
+          check_within("volume_change", finest.area / (block.width * block.height), 1.0, 0.05,
+                       "ratio")};
 }
 
 }  // namespace rktsph::case_checks::ld_slope_low_cohesion
