@@ -6,7 +6,8 @@ namespace rktsph {
 
 FormedNodeSets form_node_sets(const NodeSets& start, const PointCloud& current,
                               std::span<const double> spacing, double alpha) {
-  DelaunayCells delaunay = delaunay_cells(current, spacing, start.node_material, alpha, true);
+  DelaunayCells delaunay = delaunay_cells(current, spacing, start.node_material, alpha,
+                                          /*every_node_in_a_cell=*/true);
   FormedNodeSets formed;
   formed.count = delaunay.count;
   NodeSets& nodes = formed.nodes;

@@ -18,7 +18,8 @@ struct FormedNodeSets {
 };
 
 /// The nodes of `start` at the positions `current`, with the Delaunay cells of those positions
-/// whose circumradius is at most `alpha` times their corners' mean `spacing` (eq. 3.15):
+/// whose circumradius is at most `alpha` times their corners' mean `spacing` (eq. 3.15), every
+/// node kept in a cell and with one fan of cells (delaunay_cells' repairs, §9.17):
 /// - the nodes at `current`, with `start`'s volumes: their masses over their reference
 ///   densities, which no forming changes (eq. 9.11);
 /// - the cells' reference measures, outline and normals those of `current`;

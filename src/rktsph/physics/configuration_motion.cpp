@@ -9,8 +9,7 @@ namespace rktsph {
 
 namespace {
 // The squared distance from a cell's centroid to its farthest corner: its stencil's reach (§4.8).
-double squared_reach(CellKind kind, const CellCorners& corners) {
-  const auto centroid = cell_centroid(kind, corners);
+double squared_reach(const CellCorners& corners, const std::array<double, 3>& centroid) {
   double farthest = 0.0;
   for (int k = 0; k < corners.count; ++k) {
     const auto c = static_cast<std::size_t>(k);
@@ -33,9 +32,10 @@ ConfigurationMotion::ConfigurationMotion(const NodeSets& reference, const CellFo
   reference_corner_jacobian_.resize(nv);
   if (formed_) {
     reference_reach_.resize(nv);
-    for (std::size_t p = 0; p < nv; ++p)
-      reference_reach_[p] =
-          squared_reach(cells.kind(p), cells.corner_positions(reference.sph_nodes, p));
+    for (std::size_t p = 0; p < nv; ++p) {
+      const CellCorners corners = cells.corner_positions(reference.sph_nodes, p);
+      reference_reach_[p] = squared_reach(corners, cell_centroid(cells.kind(p), corners));
+    }
   }
   for (std::size_t p = 0; p < nv; ++p)
     cell_corner_jacobians(cells.kind(p), cells.corner_positions(reference.sph_nodes, p),
@@ -89,8 +89,8 @@ void ConfigurationMotion::move(const FieldArray& displacement, Configuration& co
     }
     quality_.largest_corner_ratio = std::max(quality_.largest_corner_ratio, largest_corner);
     if (formed_) {
-      quality_.largest_reach_ratio = std::max(quality_.largest_reach_ratio,
-                                              squared_reach(kind, corners) / reference_reach_[p]);
+      quality_.largest_reach_ratio = std::max(
+          quality_.largest_reach_ratio, squared_reach(corners, centroid) / reference_reach_[p]);
       const double width = cell_width(kind, corners);
       if (quality_.narrowest_width == 0.0 || width < quality_.narrowest_width)
         quality_.narrowest_width = width;

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "rktsph/core/field_array.hpp"
@@ -53,7 +54,7 @@ inline constexpr double kDistortedCornerRatio = 0.2;
 /// displacement is measured from (the start's) and each node's volume when they were formed.
 struct CellFormation {
   const PointCloud* origin = nullptr;
-  std::vector<double> node_volume;
+  std::span<const double> node_volume;  ///< held by whoever formed the cells, for the motion's life
 };
 
 class ConfigurationMotion {
@@ -81,8 +82,8 @@ class ConfigurationMotion {
   const NodeSets& reference_;  // its cells: corners, cells at each node, reference measures
   const PointCloud& origin_;   // where the displacement is measured from
   bool formed_;                // cells formed again (§9.17)
-  std::vector<double> base_node_volume_;  // formed cells: each node's volume at forming
-  std::vector<double> reference_reach_;   // formed cells: each cell's squared reach at forming
+  std::span<const double> base_node_volume_;  // the reference's volumes, or the formation's
+  std::vector<double> reference_reach_;       // formed cells: each cell's squared reach at forming
   std::vector<std::array<double, kMaxCellCorners>> reference_corner_jacobian_;
   std::vector<double> cell_area_;                 // current measure of each cell [m^d]
   std::vector<double> reference_node_cell_area_;  // sum of the reference areas of node n's cells

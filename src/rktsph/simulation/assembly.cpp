@@ -359,8 +359,9 @@ Assembly::Assembly(CaseDescription description, SimulationLimits limits)
     // one (§2.5, §9.17; a lattice's Delaunay triangles are dx/sqrt 2 wide), so dt is set by the
     // cells formed at the start.
     node_spacing_ = start_node_spacing(nodes_, description_.numerics.h_over_dx);
+    // As form_node_sets forms them: every node kept in a cell.
     const DelaunayCells start = delaunay_cells(nodes_.sph_nodes, node_spacing_,
-                                               nodes_.node_material, numerics.reform_alpha);
+                                               nodes_.node_material, numerics.reform_alpha, true);
     courant_length_ = std::min(courant_length_, smallest_cell_width(start.cells, nodes_.sph_nodes));
   }
   // dt = C dx / c_p (docs/theory.md §2.5), constant but for a shorter last step: the operators
@@ -538,7 +539,8 @@ void Assembly::initialise_state() {
 
 namespace {
 // A node in no cell has no stress point to take its gradients from: the run stops with where and
-// why (docs/theory.md §9.17) rather than integrate it on nothing.
+// why (docs/theory.md §9.17) rather than integrate it on nothing. form_node_sets keeps every node
+// in a cell, so only nodes on a line, with no triangle at all, are left so.
 void refuse_isolated_nodes(const FormedNodeSets& made, const State& state, double alpha) {
   if (made.count.isolated_nodes == 0) return;
   std::size_t first = 0;
@@ -546,10 +548,10 @@ void refuse_isolated_nodes(const FormedNodeSets& made, const State& state, doubl
     ++first;
   throw RunError(fmt::format(
       "forming the cells again at step {} (t = {:.6g} s) left {} node(s) in no cell, first the "
-      "node at {}: every Delaunay triangle at it is larger than numerics.cells.alpha = {} times "
-      "its corners' spacing (eq. 3.15), so it has left the body, and a node apart from the body "
-      "has no stress point to take its gradients from (docs/theory.md §9.17). A larger alpha "
-      "keeps it in the body",
+      "node at {}: no Delaunay triangle has it as a corner (the nodes lie on a line there, "
+      "numerics.cells.alpha = {} aside), and a node in no cell has no stress point to take its "
+      "gradients from (docs/theory.md §9.17). The body has collapsed to a line of nodes: stop "
+      "the run before (time.end)",
       state.step, state.time, made.count.isolated_nodes,
       describe_point(made.nodes.sph_nodes, first), alpha));
 }
@@ -627,6 +629,7 @@ void Assembly::form_cells_at(const PointCloud& formation, const FieldArray& fiel
   // The configuration on the new cells: the nodes where they were formed, with their volumes
   // (eq. 9.11); stress points at the centroids with the cells' areas; each point's h from its
   // cell (§4.8).
+  // Held here for the new step's motion (CellFormation); the old step is not used again.
   formation_volume_ = formation.volume;
   if (&formation != &configuration.sph_nodes) configuration.sph_nodes = formation;
   configuration.stress_points = formed->stress_points;
