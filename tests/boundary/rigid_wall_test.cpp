@@ -81,7 +81,7 @@ TEST(RigidWall, ContactsFollowTheMovingNodes) {
   for (std::size_t i = 0; i < moved.size(); ++i)
     moved.position[1][i] += 0.1;
   moved.position[1][3] = -0.02;
-  conditions.follow_configuration(moved);
+  conditions.follow_configuration(moved, 0.0);
   EXPECT_EQ(conditions.nodes_in_contact(), 1u);
   EXPECT_NEAR(conditions.deepest_penetration(), 0.02, 1e-15);
 }

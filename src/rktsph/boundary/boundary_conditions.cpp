@@ -94,6 +94,8 @@ std::string kind_name(const BoundaryConditionSpec& condition) {
       return "rotation";
     case BoundaryConditionSpec::Kind::RigidWall:
       return "rigid_wall";
+    case BoundaryConditionSpec::Kind::RigidBody:
+      return "rigid_body";
     case BoundaryConditionSpec::Kind::PorePressure:
       break;
   }
@@ -215,7 +217,8 @@ int BoundaryConditions::add_function(const TimeFunction& f) {
 
 BoundaryConditions::BoundaryConditions(
     std::span<const BoundaryConditionSpec> conditions, const NodeSets& nodes,
-    const std::map<std::string, std::vector<std::int32_t>>& groups, const PhysicsModel& model)
+    const std::map<std::string, std::vector<std::int32_t>>& groups, const PhysicsModel& model,
+    double time)
     : nodes_(nodes) {
   const int d = nodes.dimension;
   const std::size_t n = nodes.sph_nodes.size();
@@ -300,6 +303,8 @@ BoundaryConditions::BoundaryConditions(
     }
   }
   classify(surface_);
+  classified_projected_ = surface_.projected;
+  classified_reactions_ = surface_.reactions;
 
   // Stress constraints besides the traction-free facets: roller shear, then tractions.
   const int zero = add_function(TimeFunction::constant(0.0));
@@ -413,7 +418,14 @@ BoundaryConditions::BoundaryConditions(
     wall.contact.assign(wall.nodes.size(), 0);
     walls_.push_back(std::move(wall));
   }
-  update_contacts(nodes.sph_nodes);
+  for (const BoundaryConditionSpec& condition : conditions) {
+    if (condition.kind != BoundaryConditionSpec::Kind::RigidBody) continue;
+    bodies_.emplace_back(condition.body_name, condition.body_polygon, condition.body_velocity,
+                         ContactSurface{condition.wall_rough, condition.body_friction},
+                         group_nodes(groups, condition));
+  }
+  body_force_.assign(bodies_.size(), Vec3{});
+  update_contacts(nodes.sph_nodes, time);
 
   // Velocities: rollers, then fixed and imposed in the order written.
   for (const auto& [axis, node] : rollers)
@@ -467,15 +479,20 @@ void BoundaryConditions::classify(SurfaceSet& surface) const {
   }
 }
 
-void BoundaryConditions::follow_configuration(const PointCloud& nodes) {
+void BoundaryConditions::follow_configuration(const PointCloud& nodes, double time) {
   // Built on the first call, while surface_ still holds the reference facets and their normals.
   if (!perimeter_) perimeter_.emplace(nodes_.outline, nodes_.sph_nodes, surface_);
   perimeter_->update(nodes, surface_);
-  update_contacts(nodes);
+  update_contacts(nodes, time);
 }
 
-void BoundaryConditions::update_contacts(const PointCloud& positions) {
+void BoundaryConditions::update_contacts(const PointCloud& positions, double time) {
   deepest_penetration_ = 0.0;
+  for (RigidBody& body : bodies_) {
+    body.find_contacts(positions, time, contact_tolerance_);
+    deepest_penetration_ = std::max(deepest_penetration_, body.deepest_penetration());
+  }
+  if (!bodies_.empty()) release_contact_facets(positions);
   for (RigidWall& wall : walls_)
     for (std::size_t k = 0; k < wall.nodes.size(); ++k) {
       const auto node = static_cast<std::size_t>(wall.nodes[k]);
@@ -489,10 +506,49 @@ void BoundaryConditions::update_contacts(const PointCloud& positions) {
     }
 }
 
+void BoundaryConditions::release_contact_facets(const PointCloud& positions) {
+  // A facet pressed against a rigid body carries the body's reaction while its node is in
+  // contact: its stress increment is not projected traction-free, and the traction components the
+  // contact holds (all on a rough or frictional body, the normal one on a smooth body) are
+  // reactions, not zero (docs/theory.md §9.18).
+  if (classified_projected_.size() != surface_.projected.size()) return;  // not classified yet
+  surface_.projected = classified_projected_;
+  surface_.reactions = classified_reactions_;
+  contact_normal_.assign(nodes_.sph_nodes.size(), Vec3{});
+  contact_reaction_.assign(nodes_.sph_nodes.size(), 0);
+  contact_body_.assign(nodes_.sph_nodes.size(), -1);
+  contact_length_.assign(surface_.facet_count(), 0.0);
+  for (std::size_t b = 0; b < bodies_.size(); ++b)
+    bodies_[b].contact_normals(contact_normal_, contact_reaction_, contact_body_,
+                               static_cast<std::int32_t>(b));
+  for (std::size_t k = 0; k < surface_.size(); ++k) {
+    const auto touching = static_cast<std::size_t>(surface_.node[k]);
+    const Vec3& body_normal = contact_normal_[touching];
+    if (body_normal[0] == 0.0 && body_normal[1] == 0.0) continue;
+    for (std::int32_t f = surface_.facets_begin(k); f < surface_.facets_end(k); ++f) {
+      const Vec3 n = surface_.facet_normal(f);
+      if (n[0] * body_normal[0] + n[1] * body_normal[1] >= -0.5) continue;
+      surface_.projected[static_cast<std::size_t>(f)] = 0;
+      surface_.reactions[static_cast<std::size_t>(f)] |= contact_reaction_[touching];
+      // The node's share of the facet: half of each outline facet it gathers.
+      double& length = contact_length_[static_cast<std::size_t>(f)];
+      for (std::int32_t piece : surface_.pieces(f)) {
+        const auto p = static_cast<std::size_t>(piece);
+        const auto first = static_cast<std::size_t>(nodes_.outline.first_node(p));
+        const auto second = static_cast<std::size_t>(nodes_.outline.second_node(p));
+        length += 0.5 * std::hypot(positions.position[0][first] - positions.position[0][second],
+                                   positions.position[1][first] - positions.position[1][second]);
+      }
+    }
+  }
+}
+
 std::size_t BoundaryConditions::nodes_in_contact() const {
   std::size_t count = 0;
   for (const RigidWall& wall : walls_)
     count += static_cast<std::size_t>(std::count(wall.contact.begin(), wall.contact.end(), 1));
+  for (const RigidBody& body : bodies_)
+    count += body.nodes_in_contact();
   return count;
 }
 
@@ -530,6 +586,8 @@ void BoundaryConditions::replace_surface(const SurfaceSet& surface) {
   surface_.first_piece = surface.first_piece;
   surface_.piece = surface.piece;
   classify(surface_);
+  classified_projected_ = surface_.projected;
+  classified_reactions_ = surface_.reactions;
 }
 
 StressTensor BoundaryConditions::stress_at(const FieldArray& values, std::size_t row) const {
@@ -643,6 +701,29 @@ void BoundaryConditions::apply(double time, FieldArray& values,
   }
   impose(velocity_constraints_);
   impose_contacts(values, node_to_row);
+  for (const RigidBody& body : bodies_)
+    body.impose(time, velocity_field_, values, node_to_row);
+  if (node_to_row.empty() && !bodies_.empty()) measure_body_forces(values);
+}
+
+void BoundaryConditions::measure_body_forces(const FieldArray& values) const {
+  // The force on each body: minus the traction sigma.n of every facet pressed against it, times
+  // the facet's length at the node (docs/theory.md eq. 9.15).
+  std::fill(body_force_.begin(), body_force_.end(), Vec3{});
+  if (contact_length_.size() != surface_.facet_count()) return;
+  for (std::size_t k = 0; k < surface_.size(); ++k) {
+    const auto node = static_cast<std::size_t>(surface_.node[k]);
+    if (contact_body_.size() <= node || contact_body_[node] < 0) continue;
+    const StressTensor sigma = stress_at(values, node);
+    Vec3& force = body_force_[static_cast<std::size_t>(contact_body_[node])];
+    for (std::int32_t f = surface_.facets_begin(k); f < surface_.facets_end(k); ++f) {
+      const double length = contact_length_[static_cast<std::size_t>(f)];
+      if (length == 0.0) continue;
+      const Vec3 n = surface_.facet_normal(f);
+      for (std::size_t a = 0; a < 2; ++a)
+        force[a] -= (sigma[a][0] * n[0] + sigma[a][1] * n[1]) * length;
+    }
+  }
 }
 
 }  // namespace rktsph

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "rktsph/boundary/perimeter_normals.hpp"
+#include "rktsph/boundary/rigid_body.hpp"
 #include "rktsph/boundary/surface_set.hpp"
 #include "rktsph/boundary/surface_traction.hpp"
 #include "rktsph/case/case_description.hpp"
@@ -31,10 +32,11 @@ namespace rktsph {
 class BoundaryConditions {
  public:
   /// Validates the case's conditions against the groups and the cells (InputError at the
-  /// condition's line on any inconsistency) and compiles them into per-node constraints.
+  /// condition's line on any inconsistency) and compiles them into per-node constraints. `time`
+  /// is the time of the nodes' positions (the rigid bodies' contacts are found there).
   BoundaryConditions(std::span<const BoundaryConditionSpec> conditions, const NodeSets& nodes,
                      const std::map<std::string, std::vector<std::int32_t>>& groups,
-                     const PhysicsModel& model);
+                     const PhysicsModel& model, double time = 0.0);
 
   /// Mirror planes of the rollers with `mirror: true`; they enter every operator.
   const std::vector<MirrorPlane>& mirror_planes() const { return mirror_planes_; }
@@ -50,10 +52,11 @@ class BoundaryConditions {
   /// Turns every facet of the surface to the outward normal of the body's perimeter on the moving
   /// configuration `nodes` (docs/theory.md §9.7); the facets, and which of them velocity
   /// conditions act on, stay those of the reference configuration.
-  void follow_configuration(const PointCloud& nodes);
+  void follow_configuration(const PointCloud& nodes, double time);
 
   /// Imposes every constraint at time t on `values`. Row of node n is n, or node_to_row[n] when
-  /// given (constraints of nodes with row -1 are skipped).
+  /// given (constraints of nodes with row -1 are skipped). Applied to the nodes' own rows, the
+  /// rigid bodies' contacts measure the impulse they take from the nodes (RigidBody::force).
   void apply(double time, FieldArray& values, std::span<const std::int32_t> node_to_row = {}) const;
 
   /// Drained nodes (prescribed pore pressure) and their value at time t.
@@ -70,6 +73,12 @@ class BoundaryConditions {
   std::size_t nodes_in_contact() const;
   /// The deepest penetration of a rigid wall by a node of its group after the last update [m].
   double deepest_penetration() const { return deepest_penetration_; }
+
+  /// The rigid bodies of `rigid_body` conditions, in the order written (docs/theory.md §9.18).
+  const std::vector<RigidBody>& rigid_bodies() const { return bodies_; }
+  /// The force the soil exerts on rigid body b at the last time the conditions were applied to
+  /// the nodes' own rows [N per m of thickness] (docs/theory.md eq. 9.15).
+  const Vec3& rigid_body_force(std::size_t b) const { return body_force_[b]; }
 
   /// True if velocity component `axis` of `node` is imposed.
   bool velocity_imposed(std::int32_t node, int axis) const {
@@ -100,7 +109,10 @@ class BoundaryConditions {
   };
   int add_function(const TimeFunction& f);
   /// Marks the nodes of every wall's group that are on or beyond its plane at `positions`.
-  void update_contacts(const PointCloud& positions);
+  void update_contacts(const PointCloud& positions, double time);
+  /// Facets of nodes in contact with a body, facing it, are not projected traction-free.
+  void release_contact_facets(const PointCloud& positions);
+  void measure_body_forces(const FieldArray& values) const;
   void impose_contacts(FieldArray& values, std::span<const std::int32_t> node_to_row) const;
   /// Marks the facets that velocity conditions act on: their imposed components are reactions,
   /// and a facet whose normal velocity is imposed is not projected.
@@ -129,8 +141,16 @@ class BoundaryConditions {
   std::vector<int> drained_function_;
   int pore_pressure_field_ = -1;
   double biot_coefficient_ = 0.0;
-  std::vector<Constraint> velocity_constraints_;  // then the velocities
-  std::vector<RigidWall> walls_;                  // and last the contacts
+  std::vector<Constraint> velocity_constraints_;    // then the velocities
+  std::vector<RigidWall> walls_;                    // and last the contacts
+  std::vector<RigidBody> bodies_;                   // with the walls' and the bodies'
+  std::vector<std::uint8_t> classified_projected_;  // surface_.projected without the contacts
+  std::vector<std::uint8_t> classified_reactions_;  // surface_.reactions without the contacts
+  std::vector<Vec3> contact_normal_;                // per node: a body's normal at it, or 0
+  std::vector<std::uint8_t> contact_reaction_;      // per node: the traction components it holds
+  std::vector<std::int32_t> contact_body_;          // per node: the body it touches, or -1
+  std::vector<double> contact_length_;              // per surface facet: its length against a body
+  mutable std::vector<Vec3> body_force_;            // per body, measured by apply
   std::array<int, 3> velocity_field_{-1, -1, -1};
   double contact_tolerance_ = 0.0;  // [m]: a node this close to a wall touches it
   double deepest_penetration_ = 0.0;

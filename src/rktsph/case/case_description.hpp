@@ -99,6 +99,7 @@ struct BoundaryConditionSpec {
     PorePressure,  ///< drained face: prescribed excess pore pressure (saturated model only)
     Rotation,      ///< both velocity components of a rigid rotation about `centre` (2D only)
     RigidWall,     ///< contact with a fixed plane: no penetration; rough (no slip) or smooth
+    RigidBody,     ///< contact with a rigid polygon moving at an imposed velocity (2D)
   };
   Kind kind = Kind::Velocity;
   std::string group;
@@ -107,11 +108,15 @@ struct BoundaryConditionSpec {
   std::optional<TimeFunction> pore_pressure;            ///< PorePressure [Pa]
   int axis = 0;        ///< Roller: axis of the normal (0 = x, 1 = y)
   bool mirror = true;  ///< Roller: fold mirror images into the operators (docs/theory.md §4.5)
-  double angular_velocity = 0.0;  ///< Rotation: omega [rad/s], counter-clockwise positive, != 0
-  Vec3 centre{};                  ///< Rotation: the fixed point [m]
-  Vec3 wall_point{};              ///< RigidWall: a point of the plane [m]
-  Vec3 wall_normal{};             ///< RigidWall: its normal, pointing into the body (any length)
-  bool wall_rough = true;         ///< RigidWall: no slip while in contact (else free slip)
+  double angular_velocity = 0.0;   ///< Rotation: omega [rad/s], counter-clockwise positive, != 0
+  Vec3 centre{};                   ///< Rotation: the fixed point [m]
+  Vec3 wall_point{};               ///< RigidWall: a point of the plane [m]
+  Vec3 wall_normal{};              ///< RigidWall: its normal, pointing into the body (any length)
+  bool wall_rough = true;          ///< RigidWall, RigidBody: no slip while in contact (else free)
+  std::string body_name;           ///< RigidBody: its name in probes.csv and summary.json
+  std::vector<Vec3> body_polygon;  ///< RigidBody: its outline at t = 0 [m] (simple, 3+ vertices)
+  std::array<std::optional<TimeFunction>, 3> body_velocity;  ///< RigidBody: per axis [m/s]
+  std::optional<double> body_friction;  ///< RigidBody: Coulomb coefficient (replaces `surface`)
   SourceLocation where;
 };
 

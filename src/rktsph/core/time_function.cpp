@@ -23,7 +23,53 @@ double interpolate_table(const std::vector<std::pair<double, double>>& table, do
   return lower->second + fraction * (upper->second - lower->second);
 }
 
+/// The integral of the piecewise-linear `table` (constant beyond its ends) from 0 to `time`.
+double integrate_table(const std::vector<std::pair<double, double>>& table, double time) {
+  if (table.empty()) return 0.0;
+  // Integrate over [a, b] within one piece: the trapezoid of the function's values at its ends.
+  auto piece = [&](double a, double b) {
+    return b > a ? 0.5 * (b - a) * (interpolate_table(table, a) + interpolate_table(table, b))
+                 : 0.0;
+  };
+  double sum = 0.0, from = 0.0;
+  for (const auto& [t, v] : table) {
+    (void)v;
+    if (t >= time) break;
+    if (t > from) {
+      sum += piece(from, t);
+      from = t;
+    }
+  }
+  return sum + piece(from, time);
+}
+
 }  // namespace
+
+double TimeFunction::integral(double t) const {
+  switch (kind) {
+    case Kind::Constant:
+      return value * t;
+    case Kind::Step:
+      return value * std::max(0.0, t - start);
+    case Kind::LinearRamp: {
+      if (t <= start) return 0.0;
+      const double ramp = std::min(t - start, duration);
+      return value * ramp * ramp / (2.0 * duration) + value * std::max(0.0, t - start - duration);
+    }
+    case Kind::Table:
+      return integrate_table(table, t);
+    case Kind::Harmonic: {
+      const double before = offset * std::min(t, std::max(start, 0.0));
+      const double from = std::max(start, 0.0);
+      if (t <= from) return offset * t;
+      const double w = 2.0 * std::numbers::pi / period;
+      return before + offset * (t - from) +
+             amplitude / w *
+                 (std::cos(w * (from - start) + phase) - std::cos(w * (t - start) + phase));
+    }
+  }
+  return value * t;
+}
 
 double TimeFunction::operator()(double t) const {
   switch (kind) {

@@ -32,6 +32,8 @@ struct TimeFunction {
   }
 
   double operator()(double t) const;
+  /// The integral of the function from 0 to t >= 0 (exact for every kind).
+  double integral(double t) const;
 };
 
 }  // namespace rktsph

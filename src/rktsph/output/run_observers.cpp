@@ -102,6 +102,16 @@ JsonValue moving_configuration_summary(const Simulation& simulation,
   walls.set("nodes_in_contact", simulation.boundary_conditions().nodes_in_contact());
   walls.set("deepest_penetration", simulation.boundary_conditions().deepest_penetration());
   summary.set("rigid_walls", std::move(walls));
+  JsonValue bodies = JsonValue::array();
+  for (const RigidBody& body : simulation.boundary_conditions().rigid_bodies()) {
+    JsonValue entry = JsonValue::object();
+    entry.set("name", body.name());
+    entry.set("nodes_in_contact", body.nodes_in_contact());
+    entry.set("deepest_penetration", body.deepest_penetration());
+    entry.set("deepest_penetration_ratio", body.deepest_penetration() / simulation.nodes().spacing);
+    bodies.push_back(std::move(entry));
+  }
+  summary.set("rigid_bodies", std::move(bodies));
   return summary;
 }
 
@@ -385,8 +395,12 @@ ProbeRecorder::ProbeRecorder(const Simulation& simulation, std::filesystem::path
       names.push_back(probe.name + "." + field);
     }
   }
+  // Each rigid body's force from its contacts and its displacement (docs/theory.md §9.18).
+  for (const RigidBody& body : simulation.boundary_conditions().rigid_bodies())
+    for (const char* column : {".force_x", ".force_y", ".displacement_x", ".displacement_y"})
+      names.push_back(body.name() + column);
   table_ = ProbeCsv(names);
-  row_.resize(columns_.size());
+  row_.resize(names.size() - 1);
 }
 
 void ProbeRecorder::record(const Simulation& simulation) {
@@ -416,6 +430,14 @@ void ProbeRecorder::record(const Simulation& simulation) {
         row_[c] = largest;
         break;
     }
+  }
+  std::size_t c = columns_.size();
+  const BoundaryConditions& conditions = simulation.boundary_conditions();
+  for (std::size_t b = 0; b < conditions.rigid_bodies().size(); ++b) {
+    const Vec3& force = conditions.rigid_body_force(b);
+    const Vec3 displacement = conditions.rigid_bodies()[b].displacement(state.time);
+    for (double value : {force[0], force[1], displacement[0], displacement[1]})
+      row_[c++] = value;
   }
   table_.add_row(state.time, row_);
 }

@@ -641,7 +641,7 @@ void Assembly::form_cells_at(const PointCloud& formation, const FieldArray& fiel
   const CellFormation cell_formation{&nodes_.sph_nodes, formation_volume_};
 
   auto conditions = std::make_unique<BoundaryConditions>(description_.boundary_conditions, *formed,
-                                                         groups_, *model_);
+                                                         groups_, *model_, state_.time);
   const StepOptions options = formed_cell_options();
   StepOperatorBuilder builder(*formed, options, conditions->mirror_planes(),
                               conditions->mirror_axes());

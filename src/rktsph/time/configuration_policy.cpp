@@ -68,7 +68,7 @@ void MovingConfiguration::to_midpoint_configuration(FieldArray& gradient, int fi
   }
 }
 
-void MovingConfiguration::turn_faces(const State& state, double dt) {
+void MovingConfiguration::turn_faces(const State& state, double dt, double time) {
   // The faces' normals at X + u + (dt/2) v (docs/theory.md §9.7): the traction-free condition of
   // the half-step and of the end of the step then acts on the faces where those values are.
   if (!faces_) return;
@@ -80,12 +80,12 @@ void MovingConfiguration::turn_faces(const State& state, double dt) {
     for (std::size_t i = 0; i < ns; ++i)
       predicted_nodes_.position[axis][i] = origin_.position[axis][i] + u[i] + 0.5 * dt * v[i];
   }
-  faces_->follow_configuration(predicted_nodes_);
+  faces_->follow_configuration(predicted_nodes_, time);
 }
 
 void MovingConfiguration::after_step(State& state) {
   motion_.move(state.displacement, state.configuration);
-  if (faces_) faces_->follow_configuration(state.configuration.sph_nodes);
+  if (faces_) faces_->follow_configuration(state.configuration.sph_nodes, state.time);
   const CellQuality& quality = motion_.quality();
   if (quality.inverted_cells == 0) return;
   const std::string why =

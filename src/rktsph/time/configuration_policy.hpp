@@ -45,8 +45,11 @@ class ConfigurationPolicy {
                                          std::size_t count) const {
     (void)gradient, (void)fields, (void)velocity_gradient, (void)dt, (void)count;
   }
-  /// The faces turned to the nodes at X + u + (dt/2) v of `state` (§9.7).
-  virtual void turn_faces(const State& state, double dt) { (void)state, (void)dt; }
+  /// The faces turned to the nodes at X + u + (dt/2) v of `state` (§9.7), which are where the
+  /// nodes are at `time` (the rigid bodies' contacts are found there, §9.18).
+  virtual void turn_faces(const State& state, double dt, double time) {
+    (void)state, (void)dt, (void)time;
+  }
   /// After the step: the points moved with the displacement (§9.1).
   virtual void after_step(State& state) { (void)state; }
   /// The conditions whose faces turn with the body (the step's own conditions).
@@ -75,7 +78,7 @@ class MovingConfiguration final : public ConfigurationPolicy {
   void to_midpoint_configuration(FieldArray& gradient, int fields,
                                  std::span<const int> velocity_gradient, double dt,
                                  std::size_t count) const override;
-  void turn_faces(const State& state, double dt) override;
+  void turn_faces(const State& state, double dt, double time) override;
   void after_step(State& state) override;
   void follow_faces(BoundaryConditions* faces) override { faces_ = faces; }
   const ConfigurationMotion* motion() const override { return &motion_; }

@@ -315,7 +315,8 @@ void RkTaylorStep::filter_fields(FilteredPart part, double time, FieldArray& fie
 }
 
 void RkTaylorStep::step_boundary_nodes(const State& state, double dt) {
-  configuration_->turn_faces(state, dt);  // to x^n + (dt/2) v^n, where the half-step values are
+  // To x^n + (dt/2) v^n, where the half-step values are, at t + dt/2.
+  configuration_->turn_faces(state, dt, state.time + 0.5 * dt);
   // Step 1b: boundary nodes advance half a step with the collocated gradient; their half-step
   // values join the stress points as sources of step 2 (docs/theory.md §2.2, §7.3).
   const auto& boundary = operators_.boundary_nodes;
@@ -396,7 +397,8 @@ void RkTaylorStep::step_nodes(State& state, double dt) {
   // With the mean-velocity update only the velocity is advanced here; the rest after it (eq. 2.5).
   model_.advance(nodes_.node_material, rate_, state.time, dt, state.fields, state.internal,
                  mean_update ? AdvancedFields::Velocity : AdvancedFields::All);
-  configuration_->turn_faces(state, dt);  // to x^{n+1}: u holds u^n + (dt/2) v^n, v is v^{n+1}
+  // To x^{n+1} at t + dt: u holds u^n + (dt/2) v^n, v is v^{n+1}.
+  configuration_->turn_faces(state, dt, state.time + dt);
   project_free_faces(boundary_start_, state.fields, false);
   conditions_.apply(state.time + dt, state.fields);
   // After the conditions: a fixed node's pre-condition velocity carries its reaction, which the

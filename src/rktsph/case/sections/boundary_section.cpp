@@ -10,8 +10,8 @@ namespace {
 
 using Condition = BoundaryConditionSpec;
 
-const std::vector<std::string> kKinds = {"velocity",      "fixed",    "roller",    "traction",
-                                         "pore_pressure", "rotation", "rigid_wall"};
+const std::vector<std::string> kKinds = {"velocity",      "fixed",    "roller",     "traction",
+                                         "pore_pressure", "rotation", "rigid_wall", "rigid_body"};
 
 void read_roller(const YamlNode& kind, Condition& condition, Reading& reading) {
   const int dimension = reading.so_far.dimension;
@@ -82,6 +82,69 @@ const KeyTable<Condition>& rigid_wall_keys() {
 void read_rigid_wall(const YamlNode& node, Condition& condition, Reading& reading) {
   condition.kind = Condition::Kind::RigidWall;
   read_keys(node, rigid_wall_keys(), condition, reading);
+}
+
+/// The keys of a `rigid_body` condition's map (docs/theory.md §9.18).
+const KeyTable<Condition>& rigid_body_keys() {
+  static const KeyTable<Condition> keys = {
+      Key<Condition>{"name", "word", "–", "required", "a name of letters, digits and _",
+                     "The body's name: its columns in probes.csv are <name>.force_x, "
+                     "<name>.force_y, <name>.displacement_x and <name>.displacement_y.",
+                     true,
+                     [](const YamlNode& node, Condition& condition, Reading&) {
+                       const std::string name = to_text(node);
+                       if (name.empty() || name.find_first_not_of(kLabelAlphabet) != name.npos)
+                         fail_at(node, "not a valid body name", kLabelAlphabetName);
+                       condition.body_name = name;
+                     },
+                     [](YAML::Emitter& out, const Condition& condition, const CaseDescription&) {
+                       out << YAML::Key << "name" << YAML::Value << condition.body_name;
+                     }},
+      Key<Condition>{
+          "polygon", "list of points", "m", "required",
+          "3 to 10 000 vertices, non-zero area, simple",
+          "The body's outline at t = 0; it moves rigidly with `velocity`.", true,
+          [](const YamlNode& node, Condition& condition, Reading& reading) {
+            condition.body_polygon = read_polygon(node, reading.so_far.dimension);
+          },
+          [](YAML::Emitter& out, const Condition& condition, const CaseDescription& description) {
+            out << YAML::Key << "polygon" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+            for (const Vec3& vertex : condition.body_polygon)
+              emit_vector(out, vertex, description.dimension);
+            out << YAML::EndSeq;
+          }},
+      Key<Condition>{
+          "velocity", "map of components", "m/s", "still", "keys x, y; each a time function",
+          "The body's imposed velocity (a translation); components left out are 0.", false,
+          [](const YamlNode& node, Condition& condition, Reading& reading) {
+            condition.body_velocity = read_components(node, reading.so_far.dimension);
+          },
+          [](YAML::Emitter& out, const Condition& condition, const CaseDescription& description) {
+            if (!condition.body_velocity[0] && !condition.body_velocity[1]) return;
+            out << YAML::Key << "velocity" << YAML::Value;
+            emit_components(out, condition.body_velocity, description.dimension);
+          }},
+      choice_key<Condition, bool>("surface", &Condition::wall_rough,
+                                  {{"rough", true}, {"smooth", false}},
+                                  "rough: a node in contact moves with the body along its "
+                                  "surface; smooth: it slides freely. Not with `friction`."),
+      optional_number_key<Condition>(
+          "friction", &Condition::body_friction, NumberRange::non_negative(), "–",
+          "none (the surface rule)",
+          "Coulomb's coefficient mu: a node slides along the body once the tangential impulse "
+          "that would hold it exceeds mu times the normal one. Not with `surface`."),
+  };
+  return keys;
+}
+
+void read_rigid_body(const YamlNode& node, Condition& condition, Reading& reading) {
+  reject_unless_2d(node, reading.so_far.dimension, "'rigid_body' conditions are");
+  condition.kind = Condition::Kind::RigidBody;
+  const YamlMap map(node);
+  if (map.find("surface") != nullptr && map.find("friction") != nullptr)
+    fail_at(*map.find("friction"), "'friction' and 'surface' both say how the body holds a node",
+            "one of them: surface: rough | smooth, or friction: mu (Coulomb)", true);
+  read_keys(node, rigid_body_keys(), condition, reading);
 }
 
 /// Writes `name: value` when the condition is of `kind`.
@@ -177,6 +240,19 @@ const KeyTable<Condition>& condition_keys() {
             out << YAML::EndMap;
           }),
       section_key<Condition>(
+          "rigid_body", "map", "one kind",
+          "2D only; keys name, polygon, velocity, surface or friction",
+          "A rigid polygon moving at an imposed velocity that the group's nodes cannot enter "
+          "(contact as rigid_wall, or Coulomb friction); the force the nodes exert on it is "
+          "written to probes.csv.",
+          read_rigid_body,
+          [](YAML::Emitter& out, const Condition& condition, const CaseDescription& description) {
+            if (condition.kind != Condition::Kind::RigidBody) return;
+            out << YAML::Key << "rigid_body" << YAML::Value << YAML::Flow << YAML::BeginMap;
+            emit_keys(out, rigid_body_keys(), condition, description);
+            out << YAML::EndMap;
+          }),
+      section_key<Condition>(
           "mirror", "boolean", "true", "true, false; with roller only",
           "Fold mirror images of the neighbours into the operators (docs/theory.md §7.1).",
           [](const YamlNode& node, Condition& condition, Reading&) {
@@ -222,6 +298,13 @@ void read_conditions(const YamlNode& node, CaseDescription& description, Reading
       reading.errors.add(InputError(condition.where, "boundary_conditions.pore_pressure", "",
                                     "a pore-pressure condition needs the saturated model",
                                     "model: saturated_vpw"));
+  for (const Condition& condition : description.boundary_conditions)
+    if (condition.kind == Condition::Kind::RigidBody &&
+        description.model != ModelKind::DryLargeDeformation)
+      reading.errors.add(InputError(
+          condition.where, "boundary_conditions.rigid_body", "",
+          "a rigid body moves into the soil, which only the large-deformation model follows",
+          "model: dry_large_deformation"));
 }
 
 void emit_conditions(YAML::Emitter& out, const CaseDescription& description,
@@ -248,6 +331,7 @@ void declare_boundary_condition_keys(std::vector<DeclaredKey>& list) {
   declare(list, "boundary_conditions[].", condition_keys());
   declare(list, "boundary_conditions[].rotation.", rotation_keys());
   declare(list, "boundary_conditions[].rigid_wall.", rigid_wall_keys());
+  declare(list, "boundary_conditions[].rigid_body.", rigid_body_keys());
 }
 
 }  // namespace rktsph

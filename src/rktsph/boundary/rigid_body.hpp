@@ -1,0 +1,76 @@
+// A rigid polygon in contact with the nodes of a moving body (docs/theory.md §9.18): it moves at an
+// imposed velocity, and the nodes of its group that reach it may leave it but not enter it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "rktsph/core/field_array.hpp"
+#include "rktsph/core/point_cloud.hpp"
+#include "rktsph/core/small_tensor.hpp"
+#include "rktsph/core/time_function.hpp"
+
+namespace rktsph {
+
+/// How a node in contact moves along the body's surface (docs/theory.md eq. 9.14).
+struct ContactSurface {
+  bool rough = true;               ///< without `friction`: no slip (true) or free slip (false)
+  std::optional<double> friction;  ///< Coulomb's mu; replaces `rough` when given
+};
+
+/// Where a point lies against a polygon: its depth inside (negative outside) and the outward unit
+/// normal of the polygon at the nearest point of its outline (2D).
+struct PolygonDistance {
+  double depth = 0.0;
+  Vec3 normal{};
+};
+
+/// The signed distance of (x, y) to the simple polygon `vertices` (either orientation).
+PolygonDistance polygon_distance(std::span<const Vec3> vertices, double x, double y);
+
+class RigidBody {
+ public:
+  /// `nodes` may touch it.
+  RigidBody(std::string name, std::vector<Vec3> polygon,
+            std::array<std::optional<TimeFunction>, 3> velocity, ContactSurface surface,
+            std::vector<std::int32_t> nodes);
+
+  const std::string& name() const { return name_; }
+  /// The body's velocity and its displacement from t = 0 at `time`.
+  Vec3 velocity(double time) const;
+  Vec3 displacement(double time) const;
+
+  /// Marks the nodes that are on or inside the body at `time` at `positions` (within
+  /// `tolerance` [m]), with the outward normal of the body's nearest facet.
+  void find_contacts(const PointCloud& positions, double time, double tolerance);
+  /// Keeps the relative velocity of every node in contact from pointing into the body (eq. 9.14).
+  /// Row of node n is n, or node_to_row[n].
+  void impose(double time, std::span<const int> velocity_field, FieldArray& values,
+              std::span<const std::int32_t> node_to_row) const;
+
+  std::size_t nodes_in_contact() const;
+  /// normal[node] = the body's outward normal at each node in contact, reaction[node] the
+  /// traction components (bit a: axis a) the contact holds there, and body[node] = `index`
+  /// (others untouched).
+  void contact_normals(std::span<Vec3> normal, std::span<std::uint8_t> reaction,
+                       std::span<std::int32_t> body, std::int32_t index) const;
+  /// The deepest a node of the group lay inside the body at the last find_contacts [m].
+  double deepest_penetration() const { return deepest_penetration_; }
+
+ private:
+  std::string name_;
+  std::vector<Vec3> polygon_;  // at t = 0
+  std::array<std::optional<TimeFunction>, 3> velocity_;
+  ContactSurface surface_;
+  std::vector<std::int32_t> nodes_;
+  std::vector<std::uint8_t> contact_;  // per node of nodes_
+  std::vector<Vec3> normal_;           // outward normal of the body at it, where in contact
+  std::vector<Vec3> moved_polygon_;    // scratch of find_contacts
+  double deepest_penetration_ = 0.0;
+};
+
+}  // namespace rktsph

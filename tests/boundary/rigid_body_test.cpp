@@ -1,0 +1,175 @@
+// The `rigid_body` boundary condition (docs/input-reference.md, "boundary_conditions";
+// docs/theory.md §9.18): a rigid polygon moving at an imposed velocity; the distance of a point
+// to it, the contact rules (smooth, rough, Coulomb) relative to its velocity, the facets pressed
+// against it carrying its reaction, its force against the oedometric stiffness of a column it
+// compresses, and its input errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "../support/case_text.hpp"
+#include "../support/elastic_block.hpp"
+#include "rktsph/boundary/rigid_body.hpp"
+#include "rktsph/core/error.hpp"
+#include "rktsph/simulation/simulation.hpp"
+
+namespace rktsph::rigid_body_test {
+namespace {
+
+const std::vector<Vec3> kSquare = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}};
+
+TEST(RigidBody, DistanceToAPolygonIsItsDepthInsideAndTheNormalOfItsNearestFacet) {
+  // Inside, 0.25 from the bottom edge: depth 0.25, outward normal (0, -1).
+  PolygonDistance inside = polygon_distance(kSquare, 1.0, 0.25);
+  EXPECT_DOUBLE_EQ(inside.depth, 0.25);
+  EXPECT_DOUBLE_EQ(inside.normal[0], 0.0);
+  EXPECT_DOUBLE_EQ(inside.normal[1], -1.0);
+  // Outside beside the right edge: depth -0.5, normal (1, 0); either orientation.
+  const std::vector<Vec3> clockwise(kSquare.rbegin(), kSquare.rend());
+  for (const auto& polygon : {kSquare, clockwise}) {
+    const PolygonDistance beside = polygon_distance(polygon, 2.5, 1.0);
+    EXPECT_DOUBLE_EQ(beside.depth, -0.5);
+    EXPECT_DOUBLE_EQ(beside.normal[0], 1.0);
+    EXPECT_DOUBLE_EQ(beside.normal[1], 0.0);
+  }
+  // Off a corner: distance to the corner, normal from the corner to the point.
+  const PolygonDistance corner = polygon_distance(kSquare, 2.3, -0.4);
+  EXPECT_NEAR(corner.depth, -0.5, 1e-15);
+  EXPECT_NEAR(corner.normal[0], 0.6, 1e-15);
+  EXPECT_NEAR(corner.normal[1], -0.8, 1e-15);
+}
+
+/// A body over the square moving at (0, -1) m/s: one node under its bottom edge.
+RigidBody body_at_rest_on(ContactSurface surface) {
+  std::array<std::optional<TimeFunction>, 3> velocity;
+  velocity[1] = TimeFunction::constant(-1.0);
+  return RigidBody("plate", kSquare, velocity, surface, {0});
+}
+
+/// Node 0 at (x, y) at `time`, with velocity v, after the body's contact rule.
+Vec3 contact_velocity(const RigidBody& prototype, double x, double y, double time, Vec3 v) {
+  RigidBody body = prototype;
+  PointCloud nodes;
+  nodes.dimension = 2;
+  nodes.push_back(Vec3{x, y, 0.0}, 1.0);
+  body.find_contacts(nodes, time, 1e-9);
+  FieldArray fields(2, 1);
+  fields(0, 0) = v[0];
+  fields(1, 0) = v[1];
+  const int velocity_field[2] = {0, 1};
+  body.impose(time, velocity_field, fields, {});
+  return {fields(0, 0), fields(1, 0), 0.0};
+}
+
+TEST(RigidBody, AMovingBodyHoldsTheNodesItReachesByTheirVelocityRelativeToIt) {
+  // At t = 0.5 s the body's bottom edge is at y = -0.5: a node at y = -0.5 touches it, one at
+  // y = -0.6 does not.
+  const RigidBody smooth = body_at_rest_on({false, std::nullopt});
+  const RigidBody rough = body_at_rest_on({true, std::nullopt});
+  const RigidBody coulomb = body_at_rest_on({true, 0.5});
+  EXPECT_DOUBLE_EQ(smooth.displacement(0.5)[1], -0.5);
+  // Approaching the body (relative normal speed -0.5 - (-1)... v_y = -0.5 is slower than the body
+  // moving down at -1, so the body runs into it): normal relative speed held at 0.
+  const Vec3 v{0.4, -0.5, 0.0};
+  Vec3 out = contact_velocity(smooth, 1.0, -0.5, 0.5, v);
+  EXPECT_DOUBLE_EQ(out[0], 0.4);  // slides freely
+  EXPECT_DOUBLE_EQ(out[1], -1.0);
+  out = contact_velocity(rough, 1.0, -0.5, 0.5, v);
+  EXPECT_DOUBLE_EQ(out[0], 0.0);  // moves with the body
+  EXPECT_DOUBLE_EQ(out[1], -1.0);
+  // Coulomb, mu = 0.5: the normal correction 0.5 m/s holds at most 0.25 m/s of the 0.4 of slip.
+  out = contact_velocity(coulomb, 1.0, -0.5, 0.5, v);
+  EXPECT_NEAR(out[0], 0.15, 1e-15);
+  EXPECT_DOUBLE_EQ(out[1], -1.0);
+  // Leaving the body (moving down faster than it): untouched by a smooth body.
+  out = contact_velocity(smooth, 1.0, -0.5, 0.5, {0.4, -1.5, 0.0});
+  EXPECT_DOUBLE_EQ(out[0], 0.4);
+  EXPECT_DOUBLE_EQ(out[1], -1.5);
+  // A node below the body is not in contact.
+  out = contact_velocity(rough, 1.0, -0.6, 0.5, v);
+  EXPECT_DOUBLE_EQ(out[0], 0.4);
+  EXPECT_DOUBLE_EQ(out[1], -0.5);
+  // A node beside the body, past its edge, is not either: it slid off.
+  out = contact_velocity(rough, 2.2, -0.5, 0.5, v);
+  EXPECT_DOUBLE_EQ(out[1], -0.5);
+}
+
+std::string column(const std::string& body) {
+  test::ElasticBlock block;
+  block.spacing = 0.25;
+  block.shapes = test::ElasticBlock::rectangle(1.0, 2.0);
+  block.conditions = {"{group: xmin, roller: x}", "{group: xmax, roller: x}",
+                      "{group: ymin, roller: y}", "{group: all, rigid_body: " + body + "}"};
+  block.loads = "{damping: {coefficient: 40}}";
+  std::string text = "model: dry_large_deformation\n" + block.text();
+  const std::string end = "time: {end: 1.0}";
+  text.replace(text.find(end), end.size(), "time: {end: 2.0}");
+  return text;
+}
+
+TEST(RigidBody, APlatePressedIntoAColumnFeelsItsOedometricStiffness) {
+  // A smooth plate over the 1 m x 2 m column's top moves down 2 mm over 0.5 s and stops: at rest
+  // the column is compressed by eps = 1e-3 in the oedometer (rollers), so the plate carries
+  // M eps W with M = E (1 - nu) / ((1 + nu)(1 - 2 nu)) = 13.46 MPa: 13.46 kN per m.
+  Simulation simulation(read_case_text(
+      column("{name: plate, polygon: [[-1, 2], [2, 2], [2, 3], [-1, 3]], surface: smooth, "
+             "velocity: {y: {function: table, points: [[0, 0], [0.05, -0.004444444444444444], "
+             "[0.45, -0.004444444444444444], [0.5, 0], [2, 0]]}}}"),
+      "column.yaml"));
+  ASSERT_EQ(simulation.run(), RunStatus::Completed) << simulation.message();
+  const BoundaryConditions& conditions = simulation.boundary_conditions();
+  ASSERT_EQ(conditions.rigid_bodies().size(), 1u);
+  EXPECT_NEAR(conditions.rigid_bodies()[0].displacement(2.0)[1], -0.002, 1e-12);
+  // The force is the traction of the top row over the plate's width (measured when the last
+  // step applied its conditions, a part in 1e6 before the state's last update at rest).
+  const int syy = simulation.model().stress_field(1, 1);
+  double top_row = 0.0;
+  for (std::size_t i = 0; i < simulation.nodes().sph_nodes.size(); ++i)
+    if (simulation.nodes().sph_nodes.position[1][i] == 2.0)
+      top_row += simulation.state().fields(syy, i) *
+                 (simulation.nodes().sph_nodes.position[0][i] *
+                              (1.0 - simulation.nodes().sph_nodes.position[0][i]) ==
+                          0.0
+                      ? 0.125
+                      : 0.25);
+  const double force = conditions.rigid_body_force(0)[1];
+  EXPECT_NEAR(force, -top_row, 1e-5 * std::abs(top_row));
+  EXPECT_NEAR(conditions.rigid_body_force(0)[0], 0.0, 1e-6 * std::abs(top_row));
+  // Against the oedometer: the lattice's static state alternates row to row by +-0.6 % here
+  // (the strain modes of nodal stress storage, docs/theory.md §3.4, family ii), so the top row
+  // lies within 1.5 % of M eps; a force not taken from the contact (zero, or the impulses of the
+  // constraint, 2.2 times it on the strip footing) is far outside.
+  const double modulus = 1.0e7 * 0.7 / (1.3 * 0.4);
+  const double expected = modulus * 0.002 / 2.0 * 1.0;
+  EXPECT_NEAR(force, expected, 0.015 * expected);
+}
+
+TEST(RigidBody, SurfaceAndFrictionTogetherAreRefusedAtTheirLine) {
+  try {
+    read_case_text(column("{name: plate, polygon: [[0, 2], [1, 2], [1, 3]], surface: smooth, "
+                          "friction: 0.3}"),
+                   "column.yaml");
+    FAIL() << "surface and friction were both accepted";
+  } catch (const InputError& error) {
+    const std::string text = error.what();
+    EXPECT_NE(text.find("friction"), std::string::npos) << text;
+    EXPECT_NE(text.find("column.yaml:"), std::string::npos) << text;
+  }
+}
+
+TEST(RigidBody, TheSmallDeformationModelRefusesIt) {
+  std::string text = column("{name: plate, polygon: [[0, 2], [1, 2], [1, 3]]}");
+  text.replace(text.find("model: dry_large_deformation"), 28, "model: dry_solid");
+  try {
+    read_case_text(text, "column.yaml");
+    FAIL() << "a rigid body was accepted by the small-deformation model";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("dry_large_deformation"), std::string::npos)
+        << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace rktsph::rigid_body_test
