@@ -48,8 +48,10 @@ RigidBody body_at_rest_on(ContactSurface surface) {
   return RigidBody("plate", kSquare, velocity, surface, {0});
 }
 
-/// Node 0 at (x, y) at `time`, with velocity v, after the body's contact rule.
-Vec3 contact_velocity(const RigidBody& prototype, double x, double y, double time, Vec3 v) {
+/// Node 0 at (x, y) at `time`, with velocity v and normal stress `sigma_nn`, after the body's
+/// contact rule.
+Vec3 contact_velocity(const RigidBody& prototype, double x, double y, double time, Vec3 v,
+                      double sigma_nn = 0.0) {
   RigidBody body = prototype;
   PointCloud nodes;
   nodes.dimension = 2;
@@ -59,7 +61,8 @@ Vec3 contact_velocity(const RigidBody& prototype, double x, double y, double tim
   fields(0, 0) = v[0];
   fields(1, 0) = v[1];
   const int velocity_field[2] = {0, 1};
-  body.impose(time, velocity_field, fields, {});
+  body.impose(time, velocity_field, fields, {},
+              [sigma_nn](std::size_t, const Vec3&) { return sigma_nn; });
   return {fields(0, 0), fields(1, 0), 0.0};
 }
 
@@ -87,7 +90,11 @@ TEST(RigidBody, AMovingBodyHoldsTheNodesItReachesByTheirVelocityRelativeToIt) {
   out = contact_velocity(smooth, 1.0, -0.5, 0.5, {0.4, -1.5, 0.0});
   EXPECT_DOUBLE_EQ(out[0], 0.4);
   EXPECT_DOUBLE_EQ(out[1], -1.5);
-  // A node below the body is not in contact.
+  // Pressed against the body (compressive normal stress), it is held on it instead.
+  out = contact_velocity(smooth, 1.0, -0.5, 0.5, {0.4, -1.5, 0.0}, -1.0);
+  EXPECT_DOUBLE_EQ(out[0], 0.4);
+  EXPECT_DOUBLE_EQ(out[1], -1.0);
+  // A node below the body, beyond the contact tolerance, is not in contact.
   out = contact_velocity(rough, 1.0, -0.6, 0.5, v);
   EXPECT_DOUBLE_EQ(out[0], 0.4);
   EXPECT_DOUBLE_EQ(out[1], -0.5);

@@ -155,6 +155,20 @@ TEST(DelaunayCells, RefusesInputItCannotFormCellsFrom) {
   EXPECT_THROW(delaunay_cells(twice, spacing, material, 1.0), std::invalid_argument);
 }
 
+TEST(DelaunayCells, NoCellCrossesASolidInANotchItFills) {
+  // A 6 m x 4 m lattice (dx = 1) with a notch 2 m wide from y = 2 up (the nodes x = 3, y >= 2
+  // left out) and a rigid body filling it: with alpha = 3 the notch would be bridged (area 24);
+  // with the body, no triangle crosses it and the cells cover the rectangle less the notch.
+  const PointCloud cloud = lattice_cloud(7, 5, 1.0, [](int i, int j) { return i != 3 || j < 2; });
+  const std::vector<double> spacing(cloud.size(), 1.0);
+  const std::vector<std::int32_t> material(cloud.size(), 0);
+  EXPECT_NEAR(total_area(delaunay_cells(cloud, spacing, material, 3.0, true)), 24.0, 1e-12);
+  const std::vector<std::vector<Vec3>> body = {{{2, 2, 0}, {4, 2, 0}, {4, 5, 0}, {2, 5, 0}}};
+  const DelaunayCells formed = delaunay_cells(cloud, spacing, material, 3.0, true, body);
+  EXPECT_NEAR(total_area(formed), 20.0, 1e-12);
+  EXPECT_EQ(formed.count.isolated_nodes, 0u);
+}
+
 }  // namespace
 TEST(DelaunayCells, TwoTrianglesTouchingAtANodeAreJoinedIntoOneFan) {
   // Two triangles meet at the origin only (a bow tie): triangle (-2,-1), (-2,1), (0,0) has

@@ -7,48 +7,6 @@
 
 namespace rktsph {
 
-PolygonDistance polygon_distance(std::span<const Vec3> vertices, double x, double y) {
-  // The nearest point of the outline and whether (x, y) is inside (crossing number).
-  double nearest = std::numeric_limits<double>::max();
-  double near_x = x, near_y = y, edge_x = 0.0, edge_y = 0.0;
-  bool inside = false;
-  double twice_area = 0.0;
-  const std::size_t n = vertices.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    const Vec3& a = vertices[k];
-    const Vec3& b = vertices[(k + 1) % n];
-    twice_area += a[0] * b[1] - b[0] * a[1];
-    if ((a[1] > y) != (b[1] > y) && x < a[0] + (y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]))
-      inside = !inside;
-    const double ex = b[0] - a[0], ey = b[1] - a[1];
-    const double length2 = ex * ex + ey * ey;
-    const double s = std::clamp(((x - a[0]) * ex + (y - a[1]) * ey) / length2, 0.0, 1.0);
-    const double px = a[0] + s * ex, py = a[1] + s * ey;
-    const double distance = std::hypot(x - px, y - py);
-    if (distance < nearest) {
-      nearest = distance;
-      near_x = px;
-      near_y = py;
-      edge_x = ex;
-      edge_y = ey;
-    }
-  }
-  PolygonDistance result;
-  result.depth = inside ? nearest : -nearest;
-  // Outside and off the edge's interior (at a corner) the normal points from the outline to the
-  // point; otherwise it is the nearest edge's outward normal.
-  const double length = std::hypot(edge_x, edge_y);
-  const double orientation = twice_area > 0.0 ? 1.0 : -1.0;  // counter-clockwise: +1
-  const Vec3 edge_normal{orientation * edge_y / length, -orientation * edge_x / length, 0.0};
-  if (!inside && nearest > 0.0) {
-    const Vec3 to_point{(x - near_x) / nearest, (y - near_y) / nearest, 0.0};
-    result.normal = to_point;
-  } else {
-    result.normal = edge_normal;
-  }
-  return result;
-}
-
 RigidBody::RigidBody(std::string name, std::vector<Vec3> polygon,
                      std::array<std::optional<TimeFunction>, 3> velocity, ContactSurface surface,
                      std::vector<std::int32_t> nodes)
@@ -75,6 +33,15 @@ Vec3 RigidBody::displacement(double time) const {
   return u;
 }
 
+std::vector<Vec3> RigidBody::polygon_at(double time) const {
+  const Vec3 offset = displacement(time);
+  std::vector<Vec3> moved = polygon_;
+  for (Vec3& vertex : moved)
+    for (std::size_t a = 0; a < 2; ++a)
+      vertex[a] += offset[a];
+  return moved;
+}
+
 void RigidBody::find_contacts(const PointCloud& positions, double time, double tolerance) {
   const Vec3 offset = displacement(time);
   for (std::size_t k = 0; k < polygon_.size(); ++k)
@@ -92,7 +59,8 @@ void RigidBody::find_contacts(const PointCloud& positions, double time, double t
 }
 
 void RigidBody::impose(double time, std::span<const int> velocity_field, FieldArray& values,
-                       std::span<const std::int32_t> node_to_row) const {
+                       std::span<const std::int32_t> node_to_row,
+                       const NormalStress& normal_stress) const {
   // Eq. 9.14: with w = v - V the node's velocity relative to the body and n the body's outward
   // normal, the normal part of w may point away from the body but not into it; the correction
   // dn = max(-w.n, 0) is the normal impulse per unit mass, and the tangential part of w is kept
@@ -110,7 +78,11 @@ void RigidBody::impose(double time, std::span<const int> velocity_field, FieldAr
     for (std::size_t a = 0; a < 2; ++a)
       w[a] = values(velocity_field[a], r) - body[a];
     const double normal_speed = w[0] * n[0] + w[1] * n[1];
-    const double correction = std::max(-normal_speed, 0.0);
+    // A node pressed against the body (its normal stress compressive) is held on it: its facet
+    // carries the body's reaction, so letting it move away would leave that stress unbalanced
+    // and push it off for ever. One under tension, or none, may leave.
+    const bool pressed = normal_stress(r, n) < 0.0;
+    const double correction = pressed ? -normal_speed : std::max(-normal_speed, 0.0);
     const double kept_normal = normal_speed + correction;
     Vec3 tangential{w[0] - normal_speed * n[0], w[1] - normal_speed * n[1], 0.0};
     if (surface_.friction) {

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -13,6 +14,7 @@
 #include "rktsph/core/point_cloud.hpp"
 #include "rktsph/core/small_tensor.hpp"
 #include "rktsph/core/time_function.hpp"
+#include "rktsph/mesh/polygon_distance.hpp"
 
 namespace rktsph {
 
@@ -21,16 +23,6 @@ struct ContactSurface {
   bool rough = true;               ///< without `friction`: no slip (true) or free slip (false)
   std::optional<double> friction;  ///< Coulomb's mu; replaces `rough` when given
 };
-
-/// Where a point lies against a polygon: its depth inside (negative outside) and the outward unit
-/// normal of the polygon at the nearest point of its outline (2D).
-struct PolygonDistance {
-  double depth = 0.0;
-  Vec3 normal{};
-};
-
-/// The signed distance of (x, y) to the simple polygon `vertices` (either orientation).
-PolygonDistance polygon_distance(std::span<const Vec3> vertices, double x, double y);
 
 class RigidBody {
  public:
@@ -43,14 +35,19 @@ class RigidBody {
   /// The body's velocity and its displacement from t = 0 at `time`.
   Vec3 velocity(double time) const;
   Vec3 displacement(double time) const;
+  /// Its outline at `time`.
+  std::vector<Vec3> polygon_at(double time) const;
 
   /// Marks the nodes that are on or inside the body at `time` at `positions` (within
   /// `tolerance` [m]), with the outward normal of the body's nearest facet.
   void find_contacts(const PointCloud& positions, double time, double tolerance);
-  /// Keeps the relative velocity of every node in contact from pointing into the body (eq. 9.14).
-  /// Row of node n is n, or node_to_row[n].
+  /// The normal stress n.sigma.n at a row of the values, for the unit normal n.
+  using NormalStress = std::function<double(std::size_t row, const Vec3& normal)>;
+  /// Keeps the relative velocity of every node in contact from pointing into the body, and of a
+  /// node pressed against it (normal stress < 0) from leaving it (eq. 9.14). Row of node n is n,
+  /// or node_to_row[n].
   void impose(double time, std::span<const int> velocity_field, FieldArray& values,
-              std::span<const std::int32_t> node_to_row) const;
+              std::span<const std::int32_t> node_to_row, const NormalStress& normal_stress) const;
 
   std::size_t nodes_in_contact() const;
   /// normal[node] = the body's outward normal at each node in contact, reaction[node] the

@@ -239,6 +239,7 @@ struct NumericsSpec {
   CellPolicy cell_policy = CellPolicy::Moving;
   double reform_alpha = 1.0;         ///< alpha of eq. 3.15 when cells are formed again
   double reform_corner_ratio = 0.5;  ///< a cell's corner Jacobian over its formation one below
+  double spread_below = 0.0;         ///< crowded nodes spread before a forming (eq. 9.16); 0: never
                                      ///< which the cells are formed again
   SourceLocation where;
 };

@@ -5,9 +5,10 @@
 namespace rktsph {
 
 FormedNodeSets form_node_sets(const NodeSets& start, const PointCloud& current,
-                              std::span<const double> spacing, double alpha) {
+                              std::span<const double> spacing, double alpha,
+                              std::span<const std::vector<Vec3>> solids) {
   DelaunayCells delaunay = delaunay_cells(current, spacing, start.node_material, alpha,
-                                          /*every_node_in_a_cell=*/true);
+                                          /*every_node_in_a_cell=*/true, solids);
   FormedNodeSets formed;
   formed.count = delaunay.count;
   NodeSets& nodes = formed.nodes;

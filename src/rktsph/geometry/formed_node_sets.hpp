@@ -26,7 +26,9 @@ struct FormedNodeSets {
 /// - stress point p at cell p's centroid, its volume the cell's area times the mean over its
 ///   corners of V_0/V (V a corner's volume in `current`): so that V/V_0 of the point, which
 ///   weighs its momentum rate (eq. 9.3), starts at its corners' mean (eq. 9.12).
+/// No cell crosses one of the `solids` (the rigid bodies where they are, §9.18).
 FormedNodeSets form_node_sets(const NodeSets& start, const PointCloud& current,
-                              std::span<const double> spacing, double alpha);
+                              std::span<const double> spacing, double alpha,
+                              std::span<const std::vector<Vec3>> solids = {});
 
 }  // namespace rktsph

@@ -1,4 +1,5 @@
 #include "rktsph/mesh/delaunay_cells.hpp"
+#include "rktsph/mesh/polygon_distance.hpp"
 
 // CGAL's headers are under /usr/include, a system directory, so their own warnings are not ours.
 #include <CGAL/Delaunay_triangulation_2.h>
@@ -19,7 +20,7 @@ namespace {
 
 using DelaunayKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using IndexedVertex = CGAL::Triangulation_vertex_base_with_info_2<std::int32_t, DelaunayKernel>;
-// A face's info: 1 while it is a kept cell.
+// A face's info: its mark (kDropped, kKept, kInSolid).
 using FlaggedFace = CGAL::Triangulation_face_base_with_info_2<int, DelaunayKernel>;
 using DelaunayStructure = CGAL::Triangulation_data_structure_2<IndexedVertex, FlaggedFace>;
 using NodeTriangulation = CGAL::Delaunay_triangulation_2<DelaunayKernel, DelaunayStructure>;
@@ -44,6 +45,33 @@ void require_input(const PointCloud& nodes, std::span<const double> spacing,
 }
 
 // The circumradius of a triangle from its edges: R = abc / (4 A).
+// A face's mark: a cell, left out by the alpha criterion (the repairs may keep it again), or
+// crossing a solid (never kept).
+constexpr int kDropped = 0, kKept = 1, kInSolid = 2;
+// How deep, in spacings, a triangle's centroid or edge midpoint may lie inside a solid: nodes in
+// contact sit on its face to within a step's motion.
+constexpr double kSolidTolerance = 0.1;
+
+// A triangle crosses a solid when its centroid or the midpoint of an edge lies inside it deeper
+// than `tolerance`: a triangle spanning a body's corner from the nodes under it to those beside it
+// does; one whose edge lies along the body's face, its nodes in contact, does not.
+bool crosses_a_solid(const std::array<DelaunayPoint, 3>& p,
+                     std::span<const std::vector<Vec3>> solids, double tolerance) {
+  for (const std::vector<Vec3>& polygon : solids) {
+    const double cx = (p[0].x() + p[1].x() + p[2].x()) / 3.0;
+    const double cy = (p[0].y() + p[1].y() + p[2].y()) / 3.0;
+    if (polygon_distance(polygon, cx, cy).depth > tolerance) return true;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const DelaunayPoint& a = p[k];
+      const DelaunayPoint& b = p[(k + 1) % 3];
+      const double depth =
+          polygon_distance(polygon, 0.5 * (a.x() + b.x()), 0.5 * (a.y() + b.y())).depth;
+      if (depth > tolerance) return true;
+    }
+  }
+  return false;
+}
+
 double circumradius(const std::array<DelaunayPoint, 3>& p) {
   const double a = std::sqrt(CGAL::squared_distance(p[1], p[2]));
   const double b = std::sqrt(CGAL::squared_distance(p[2], p[0]));
@@ -81,7 +109,7 @@ std::size_t join_fans(NodeTriangulation& triangulation) {
         around.push_back(face);
       } while (++face != end);
       const auto kept = [&](std::size_t k) {
-        return !triangulation.is_infinite(around[k]) && around[k]->info() == 1;
+        return !triangulation.is_infinite(around[k]) && around[k]->info() == kKept;
       };
       const std::size_t n = around.size();
       std::size_t start = n;  // a kept face that follows a gap
@@ -103,7 +131,8 @@ std::size_t join_fans(NodeTriangulation& triangulation) {
         std::size_t length = 0;
         bool outside = false;
         while (k + length < n && !kept((start + k + length) % n)) {
-          outside = outside || triangulation.is_infinite(around[(start + k + length) % n]);
+          const auto gap = around[(start + k + length) % n];
+          outside = outside || triangulation.is_infinite(gap) || gap->info() == kInSolid;
           ++length;
         }
         if (!outside && length < best_length) {
@@ -114,7 +143,7 @@ std::size_t join_fans(NodeTriangulation& triangulation) {
       }
       if (best_begin == n) continue;
       for (std::size_t k = 0; k < best_length; ++k)
-        around[(best_begin + k) % n]->info() = 1;
+        around[(best_begin + k) % n]->info() = kKept;
       restored += best_length;
       changed = true;
     }
@@ -135,8 +164,8 @@ std::size_t keep_every_node(NodeTriangulation& triangulation) {
     auto face = triangulation.incident_faces(vertex), end = face;
     bool in_a_cell = false;
     do {
-      if (triangulation.is_infinite(face)) continue;
-      if (face->info() == 1) {
+      if (triangulation.is_infinite(face) || face->info() == kInSolid) continue;
+      if (face->info() == kKept) {
         in_a_cell = true;
         break;
       }
@@ -148,7 +177,7 @@ std::size_t keep_every_node(NodeTriangulation& triangulation) {
       }
     } while (++face != end);
     if (in_a_cell || best == NodeTriangulation::Face_handle()) continue;
-    best->info() = 1;
+    best->info() = kKept;
     ++restored;
   }
   return restored;
@@ -158,7 +187,7 @@ std::size_t keep_every_node(NodeTriangulation& triangulation) {
 
 DelaunayCells delaunay_cells(const PointCloud& nodes, std::span<const double> spacing,
                              std::span<const std::int32_t> node_material, double alpha,
-                             bool every_node_in_a_cell) {
+                             bool every_node_in_a_cell, std::span<const std::vector<Vec3>> solids) {
   require_input(nodes, spacing, node_material, alpha);
   std::vector<std::pair<DelaunayPoint, std::int32_t>> points;
   points.reserve(nodes.size());
@@ -181,7 +210,8 @@ DelaunayCells delaunay_cells(const PointCloud& nodes, std::span<const double> sp
       position[static_cast<std::size_t>(k)] = face->vertex(k)->point();
       mean_spacing += spacing[static_cast<std::size_t>(face->vertex(k)->info())] / 3.0;
     }
-    face->info() = circumradius(position) <= alpha * mean_spacing ? 1 : 0;  // eq. 3.15
+    face->info() = circumradius(position) <= alpha * mean_spacing ? kKept : kDropped;  // (3.15)
+    if (crosses_a_solid(position, solids, kSolidTolerance * mean_spacing)) face->info() = kInSolid;
   }
   if (every_node_in_a_cell) formed.count.restored += keep_every_node(triangulation);
   formed.count.restored += join_fans(triangulation);
@@ -189,7 +219,7 @@ DelaunayCells delaunay_cells(const PointCloud& nodes, std::span<const double> sp
   // same nodes.
   for (auto face = triangulation.finite_faces_begin(); face != triangulation.finite_faces_end();
        ++face) {
-    if (face->info() == 0) {
+    if (face->info() != kKept) {
       ++formed.count.dropped;
       continue;
     }

@@ -7,8 +7,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "rktsph/core/point_cloud.hpp"
+#include "rktsph/core/small_tensor.hpp"
 #include "rktsph/mesh/cell_complex.hpp"
 
 namespace rktsph {
@@ -41,8 +43,12 @@ struct DelaunayCells {
 /// With `every_node_in_a_cell`, a node the criterion leaves in no cell first keeps the Delaunay
 /// triangle at it with the smallest circumradius (counted as restored), so that no node is left
 /// out of the body.
+/// A triangle whose centroid or an edge's midpoint lies inside one of the `solids` (simple
+/// polygons, e.g. rigid bodies, docs/theory.md §9.18) is dropped and never kept again by either
+/// repair: no cell crosses a solid.
 DelaunayCells delaunay_cells(const PointCloud& nodes, std::span<const double> spacing,
                              std::span<const std::int32_t> node_material, double alpha,
-                             bool every_node_in_a_cell = false);
+                             bool every_node_in_a_cell = false,
+                             std::span<const std::vector<Vec3>> solids = {});
 
 }  // namespace rktsph

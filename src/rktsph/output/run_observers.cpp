@@ -95,6 +95,7 @@ JsonValue moving_configuration_summary(const Simulation& simulation,
   formed.set("narrowest_cell_ratio", forming.narrowest_cell_ratio);
   formed.set("divided_steps", forming.divided_steps);
   formed.set("most_parts", forming.most_parts);
+  formed.set("nodes_spread", forming.nodes_spread);
   formed.set("seconds", forming.seconds);
   summary.set("cell_forming", std::move(formed));
   summary.set("detected_free_surface", std::move(surface));
@@ -401,6 +402,7 @@ ProbeRecorder::ProbeRecorder(const Simulation& simulation, std::filesystem::path
       names.push_back(body.name() + column);
   table_ = ProbeCsv(names);
   row_.resize(names.size() - 1);
+  body_impulse_.assign(2 * simulation.boundary_conditions().rigid_bodies().size(), 0.0);
 }
 
 void ProbeRecorder::record(const Simulation& simulation) {
@@ -431,14 +433,21 @@ void ProbeRecorder::record(const Simulation& simulation) {
         break;
     }
   }
+  // The bodies' mean force since the last row (the force of one step is the traction of the
+  // nodes in contact then, which jumps as nodes join and leave the body), and their displacement.
   std::size_t c = columns_.size();
   const BoundaryConditions& conditions = simulation.boundary_conditions();
+  const double interval = state.time - impulse_since_;
   for (std::size_t b = 0; b < conditions.rigid_bodies().size(); ++b) {
-    const Vec3& force = conditions.rigid_body_force(b);
+    const Vec3& now = conditions.rigid_body_force(b);
     const Vec3 displacement = conditions.rigid_bodies()[b].displacement(state.time);
-    for (double value : {force[0], force[1], displacement[0], displacement[1]})
-      row_[c++] = value;
+    for (std::size_t a = 0; a < 2; ++a)
+      row_[c++] = interval > 0.0 ? body_impulse_[2 * b + a] / interval : now[a];
+    row_[c++] = displacement[0];
+    row_[c++] = displacement[1];
   }
+  std::fill(body_impulse_.begin(), body_impulse_.end(), 0.0);
+  impulse_since_ = state.time;
   table_.add_row(state.time, row_);
 }
 
@@ -447,7 +456,17 @@ void ProbeRecorder::on_start(const Simulation& simulation) {
   table_.flush(path_);
 }
 
+void ProbeRecorder::integrate_body_forces(const Simulation& simulation) {
+  const double time = simulation.state().time;
+  const BoundaryConditions& conditions = simulation.boundary_conditions();
+  for (std::size_t b = 0; b < conditions.rigid_bodies().size(); ++b)
+    for (std::size_t a = 0; a < 2; ++a)
+      body_impulse_[2 * b + a] += conditions.rigid_body_force(b)[a] * (time - last_step_time_);
+  last_step_time_ = time;
+}
+
 void ProbeRecorder::after_step(const Simulation& simulation) {
+  integrate_body_forces(simulation);
   if (every_step_ || records_.due(simulation.state().time, simulation.time_step()))
     record(simulation);
   // With every field output, so the histories on disk always reach the last VTU (a killed run
@@ -472,6 +491,9 @@ void ProbeRecorder::save_checkpoint(CheckpointOut& out) const {
   out.put_f64(field_outputs_.next_time());
   out.put_u32(static_cast<std::uint32_t>(table_.column_names().size()));
   out.put_doubles(table_.values());
+  out.put_doubles(body_impulse_);
+  out.put_f64(impulse_since_);
+  out.put_f64(last_step_time_);
 }
 
 void ProbeRecorder::restore_checkpoint(CheckpointIn& in) {
@@ -484,6 +506,13 @@ void ProbeRecorder::restore_checkpoint(CheckpointIn& in) {
   std::vector<double> values = in.get_doubles();
   if (values.size() % columns != 0) in.fail("probe values that are not whole rows");
   table_.set_values(std::move(values));
+  std::vector<double> impulse = in.get_doubles();
+  if (impulse.size() != body_impulse_.size())
+    in.fail(fmt::format("{} rigid-body force sums stored where this case has {}", impulse.size(),
+                        body_impulse_.size()));
+  body_impulse_ = std::move(impulse);
+  impulse_since_ = in.get_f64();
+  last_step_time_ = in.get_f64();
 }
 
 void SummaryWriter::on_finish(const Simulation& simulation, RunStatus status,

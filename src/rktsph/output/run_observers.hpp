@@ -84,6 +84,8 @@ class ProbeRecorder final : public Observer, public Checkpointed {
     ProbeSpec::Reduction reduction;
   };
   void record(const Simulation& simulation);
+  /// Adds each rigid body's force times the step to body_impulse_ (eq. 9.15).
+  void integrate_body_forces(const Simulation& simulation);
   std::filesystem::path path_;
   std::vector<Column> columns_;
   ProbeCsv table_;
@@ -92,6 +94,11 @@ class ProbeRecorder final : public Observer, public Checkpointed {
   OutputSchedule records_;
   OutputSchedule field_outputs_;
   double last_flush_wall_ = 0.0;
+  // The rigid bodies' columns are the mean force since the last row: its time integral since
+  // then [N s/m] per body and axis, the time of that row and of the last step.
+  std::vector<double> body_impulse_;
+  double impulse_since_ = 0.0;
+  double last_step_time_ = 0.0;
 };
 
 /// Writes summary.json when the run ends, however it ends (status, message, counts, program),

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "rktsph/case/computed_defaults.hpp"
+#include "rktsph/geometry/crowded_nodes.hpp"
 #include "rktsph/geometry/formed_node_sets.hpp"
 #include "rktsph/geometry/triangle_mesher.hpp"
 #include "rktsph/geometry/triangle_node_sets.hpp"
@@ -601,7 +602,35 @@ bool Assembly::cells_need_forming() const {
 }
 
 void Assembly::form_cells() {
+  spread_crowded_nodes_before_forming();
   form_cells_at(state_.configuration.sph_nodes, state_.fields);
+}
+
+void Assembly::spread_crowded_nodes_before_forming() {
+  // Eq. 9.16: a node crowded against a neighbour moves, its fields with it unchanged; its
+  // displacement takes the move, so that x = X + u still holds.
+  const double fraction = description_.numerics.spread_below;
+  if (!(fraction > 0.0) || !formed_) return;
+  PointCloud& positions = state_.configuration.sph_nodes;
+  const std::size_t n = positions.size();
+  std::vector<double> spacing(n);
+  std::vector<std::uint8_t> held(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    spacing[i] = node_spacing_[i] * std::sqrt(positions.volume[i] / nodes_.sph_nodes.volume[i]);
+    for (int a = 0; a < nodes_.dimension; ++a)
+      if (conditions_->velocity_imposed(static_cast<std::int32_t>(i), a))
+        held[i] |= static_cast<std::uint8_t>(1u << a);
+  }
+  FieldArray shift(nodes_.dimension, n);
+  forming_.nodes_spread += static_cast<long>(spread_crowded_nodes(
+      formed_->cells, formed_->outline, positions, spacing, fraction, held, shift));
+  for (int a = 0; a < nodes_.dimension; ++a) {
+    const auto axis = static_cast<std::size_t>(a);
+    for (std::size_t i = 0; i < n; ++i) {
+      positions.position[axis][i] += shift(a, i);
+      state_.displacement(a, i) += shift(a, i);
+    }
+  }
 }
 
 void Assembly::form_cells_at(const PointCloud& formation, const FieldArray& fields) {
@@ -612,8 +641,12 @@ void Assembly::form_cells_at(const PointCloud& formation, const FieldArray& fiel
   std::vector<double> spacing(node_spacing_.size());
   for (std::size_t i = 0; i < spacing.size(); ++i)
     spacing[i] = node_spacing_[i] * std::sqrt(formation.volume[i] / nodes_.sph_nodes.volume[i]);
+  // No cell crosses a rigid body where it is now (§9.18).
+  std::vector<std::vector<Vec3>> solids;
+  for (const RigidBody& body : conditions_->rigid_bodies())
+    solids.push_back(body.polygon_at(state_.time));
   FormedNodeSets made =
-      form_node_sets(nodes_, formation, spacing, description_.numerics.reform_alpha);
+      form_node_sets(nodes_, formation, spacing, description_.numerics.reform_alpha, solids);
   refuse_isolated_nodes(made, state_, description_.numerics.reform_alpha);
   ++forming_.formings;
   forming_.cells_formed += static_cast<long>(made.nodes.cells.cell_count());
@@ -686,7 +719,7 @@ void Assembly::save_cell_forming(CheckpointOut& out) const {
   out.put_fields(formation_fields_);
   for (const long count : {forming_.formings, forming_.cells_formed, forming_.triangles_dropped,
                            forming_.triangles_restored, forming_.divided_steps,
-                           static_cast<long>(forming_.most_parts)})
+                           static_cast<long>(forming_.most_parts), forming_.nodes_spread})
     out.put_i64(count);
   out.put_f64(forming_.narrowest_cell_ratio);
 }
@@ -705,7 +738,7 @@ void Assembly::restore_cell_forming(CheckpointIn& in) {
   in.get_doubles_into(formation.volume.data(), formation.size());
   FieldArray fields(model_->field_count(), nodes_.sph_nodes.size());
   in.get_fields_into(fields);
-  std::array<long, 6> counts{};
+  std::array<long, 7> counts{};
   for (long& count : counts)
     count = in.get_i64();
   const double narrowest = in.get_f64();
@@ -716,6 +749,7 @@ void Assembly::restore_cell_forming(CheckpointIn& in) {
   forming_.triangles_restored = counts[3];
   forming_.divided_steps = counts[4];
   forming_.most_parts = static_cast<int>(counts[5]);
+  forming_.nodes_spread = counts[6];
   forming_.narrowest_cell_ratio = narrowest;
 }
 

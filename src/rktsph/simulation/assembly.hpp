@@ -70,6 +70,7 @@ struct CellForming {
   /// Steps taken in parts, and the most parts of one step (step_parts()).
   long divided_steps = 0;
   int most_parts = 1;
+  long nodes_spread = 0;  ///< crowded nodes moved before a forming (eq. 9.16)
 };
 
 class Assembly {
@@ -132,6 +133,8 @@ class Assembly {
   /// conditions and the step on them, its controls started from `fields`; the configuration's
   /// nodes are set to `formation`.
   void form_cells_at(const PointCloud& formation, const FieldArray& fields);
+  /// numerics.cells.spread_below: crowded nodes moved before a forming (eq. 9.16).
+  void spread_crowded_nodes_before_forming();
   /// initial_conditions.stress, on top of the geostatic stress.
   void add_initial_stress();
   /// initial_conditions.angular_velocity and bending_mode, on top of the uniform velocity.

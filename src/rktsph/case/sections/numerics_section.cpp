@@ -81,6 +81,11 @@ const KeyTable<NumericsSpec>& cell_keys() {
                     "grows beyond its inverse, or a cell's squared reach (centroid to farthest "
                     "corner) does (a stretched cell, whose corners leave the support of its "
                     "stencil)."),
+      number_key<N>("spread_below", &N::spread_below, NumberRange{0.0, 1.0, false, true}, "–",
+                    "With policy: reformed, before the cells are formed again, a node whose "
+                    "nearest neighbour is closer than this fraction of its spacing moves to the "
+                    "centroid of its neighbours (on the outline, to the midpoint of its two "
+                    "neighbours along it), its fields unchanged (docs/theory.md §9.19); 0 never."),
   };
   return keys;
 }
