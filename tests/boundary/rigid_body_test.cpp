@@ -153,6 +153,33 @@ TEST(RigidBody, APlatePressedIntoAColumnFeelsItsOedometricStiffness) {
   EXPECT_NEAR(force, expected, 0.015 * expected);
 }
 
+TEST(RigidBody, TheLoadedWidthEndsAtTheBodysCorner) {
+  // A plate ending at x = 0.6 m over the column's top row (nodes every 0.25 m): the nodes at 0,
+  // 0.25 and 0.5 m touch it, and the last one's share runs on to the corner, 0.1 m beyond it
+  // (eq. 9.15): the force is their traction over 0.125, 0.25 and 0.225 m, 0.6 m in all.
+  std::string text = column(
+      "{name: plate, polygon: [[-1, 2], [0.6, 2], [0.6, 3], [-1, 3]], surface: smooth, "
+      "velocity: {y: {function: table, points: [[0, 0], [0.05, -0.04], [0.1, 0], [2, 0]]}}}");
+  text.replace(text.find("time: {end: 2.0}"), 16, "time: {end: 1.0}");  // at rest by then
+  Simulation simulation(read_case_text(text, "column.yaml"));
+  ASSERT_EQ(simulation.run(), RunStatus::Completed) << simulation.message();
+  const auto& position = simulation.nodes().sph_nodes.position;  // at the start
+  const FieldArray& u = simulation.state().displacement;
+  const int syy = simulation.model().stress_field(1, 1);
+  double expected = 0.0;
+  for (std::size_t i = 0; i < simulation.nodes().sph_nodes.size(); ++i) {
+    if (position[1][i] != 2.0 || position[0][i] > 0.6) continue;
+    const double x = position[0][i];
+    // Half the way to each neighbour on the plate, and from the last one on to the corner.
+    const double share = x == 0.0   ? 0.125 + 0.5 * u(0, i + 1) - 0.5 * u(0, i)
+                         : x == 0.5 ? 0.125 + 0.5 * (u(0, i) - u(0, i - 1)) + 0.1 - u(0, i)
+                                    : 0.25 + 0.5 * (u(0, i + 1) - u(0, i - 1));
+    expected -= simulation.state().fields(syy, i) * share;
+  }
+  ASSERT_GT(expected, 0.0);
+  EXPECT_NEAR(simulation.boundary_conditions().rigid_body_force(0)[1], expected, 1e-4 * expected);
+}
+
 TEST(RigidBody, SurfaceAndFrictionTogetherAreRefusedAtTheirLine) {
   try {
     read_case_text(column("{name: plate, polygon: [[0, 2], [1, 2], [1, 3]], surface: smooth, "

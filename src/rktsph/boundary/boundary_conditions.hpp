@@ -112,6 +112,8 @@ class BoundaryConditions {
   void update_contacts(const PointCloud& positions, double time);
   /// Facets of nodes in contact with a body, facing it, are not projected traction-free.
   void release_contact_facets(const PointCloud& positions);
+  /// A node's share of the face of the body it touches [m] (eq. 9.15).
+  double contact_share(std::size_t node, const PointCloud& positions) const;
   void measure_body_forces(const FieldArray& values) const;
   void impose_contacts(FieldArray& values, std::span<const std::int32_t> node_to_row) const;
   /// Marks the facets that velocity conditions act on: their imposed components are reactions,
@@ -149,7 +151,7 @@ class BoundaryConditions {
   std::vector<Vec3> contact_normal_;                // per node: a body's normal at it, or 0
   std::vector<std::uint8_t> contact_reaction_;      // per node: the traction components it holds
   std::vector<std::int32_t> contact_body_;          // per node: the body it touches, or -1
-  std::vector<double> contact_length_;              // per surface facet: its length against a body
+  std::vector<double> contact_length_;              // per node: its share of a body's face [m]
   mutable std::vector<Vec3> body_force_;            // per body, measured by apply
   std::array<int, 3> velocity_field_{-1, -1, -1};
   double contact_tolerance_ = 0.0;  // [m]: a node this close to a wall touches it

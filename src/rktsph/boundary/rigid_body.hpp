@@ -37,6 +37,8 @@ class RigidBody {
   Vec3 displacement(double time) const;
   /// Its outline at `time`.
   std::vector<Vec3> polygon_at(double time) const;
+  /// Its outline where the last find_contacts placed it.
+  const std::vector<Vec3>& outline() const { return moved_polygon_; }
 
   /// Marks the nodes that are on or inside the body at `time` at `positions` (within
   /// `tolerance` [m]), with the outward normal of the body's nearest facet.

@@ -50,7 +50,7 @@ void require_input(const PointCloud& nodes, std::span<const double> spacing,
 constexpr int kDropped = 0, kKept = 1, kInSolid = 2;
 // How deep, in spacings, a triangle's centroid or edge midpoint may lie inside a solid: nodes in
 // contact sit on its face to within a step's motion.
-constexpr double kSolidTolerance = 0.1;
+constexpr double kSolidTolerance = 0.03;
 
 // A triangle crosses a solid when its centroid or the midpoint of an edge lies inside it deeper
 // than `tolerance`: a triangle spanning a body's corner from the nodes under it to those beside it
