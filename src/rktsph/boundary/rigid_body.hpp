@@ -1,5 +1,6 @@
 // A rigid polygon in contact with the nodes of a moving body (docs/theory.md §9.18): it moves at an
-// imposed velocity, and the nodes of its group that reach it may leave it but not enter it.
+// imposed velocity; the nodes of its group that reach it may not enter it, and those pressed
+// against it move with it along its normal.
 #pragma once
 
 #include <array>
@@ -68,7 +69,7 @@ class RigidBody {
   std::vector<std::int32_t> nodes_;
   std::vector<std::uint8_t> contact_;  // per node of nodes_
   std::vector<Vec3> normal_;           // outward normal of the body at it, where in contact
-  std::vector<Vec3> moved_polygon_;    // scratch of find_contacts
+  std::vector<Vec3> moved_polygon_;    // where the last find_contacts placed it
   double deepest_penetration_ = 0.0;
 };
 
