@@ -33,20 +33,21 @@ Vec3 RigidBody::displacement(double time) const {
   return u;
 }
 
-std::vector<Vec3> RigidBody::polygon_at(double time) const {
+void RigidBody::place(double time, std::vector<Vec3>& polygon) const {
   const Vec3 offset = displacement(time);
-  std::vector<Vec3> moved = polygon_;
-  for (Vec3& vertex : moved)
+  for (std::size_t k = 0; k < polygon_.size(); ++k)
     for (std::size_t a = 0; a < 2; ++a)
-      vertex[a] += offset[a];
+      polygon[k][a] = polygon_[k][a] + offset[a];
+}
+
+std::vector<Vec3> RigidBody::polygon_at(double time) const {
+  std::vector<Vec3> moved = polygon_;
+  place(time, moved);
   return moved;
 }
 
 void RigidBody::find_contacts(const PointCloud& positions, double time, double tolerance) {
-  const Vec3 offset = displacement(time);
-  for (std::size_t k = 0; k < polygon_.size(); ++k)
-    for (std::size_t a = 0; a < 2; ++a)
-      moved_polygon_[k][a] = polygon_[k][a] + offset[a];
+  place(time, moved_polygon_);
   deepest_penetration_ = 0.0;
   for (std::size_t k = 0; k < nodes_.size(); ++k) {
     const auto node = static_cast<std::size_t>(nodes_[k]);

@@ -62,6 +62,9 @@ class RigidBody {
   double deepest_penetration() const { return deepest_penetration_; }
 
  private:
+  /// `polygon` (sized as the body's) <- its outline at `time`.
+  void place(double time, std::vector<Vec3>& polygon) const;
+
   std::string name_;
   std::vector<Vec3> polygon_;  // at t = 0
   std::array<std::optional<TimeFunction>, 3> velocity_;

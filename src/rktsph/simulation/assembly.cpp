@@ -606,6 +606,15 @@ void Assembly::form_cells() {
   form_cells_at(state_.configuration.sph_nodes, state_.fields);
 }
 
+std::vector<double> Assembly::node_spacing_at(const PointCloud& nodes) const {
+  // Each node's spacing now: its spacing at the start stretched as its volume has (eq. 3.15), so
+  // that a body that stretches keeps its cells and a node that leaves it does not.
+  std::vector<double> spacing(node_spacing_.size());
+  for (std::size_t i = 0; i < spacing.size(); ++i)
+    spacing[i] = node_spacing_[i] * std::sqrt(nodes.volume[i] / nodes_.sph_nodes.volume[i]);
+  return spacing;
+}
+
 void Assembly::spread_crowded_nodes_before_forming() {
   // Eq. 9.16: a node crowded against a neighbour moves, its fields with it unchanged; its
   // displacement takes the move, so that x = X + u still holds.
@@ -613,10 +622,9 @@ void Assembly::spread_crowded_nodes_before_forming() {
   if (!(fraction > 0.0) || !formed_) return;
   PointCloud& positions = state_.configuration.sph_nodes;
   const std::size_t n = positions.size();
-  std::vector<double> spacing(n);
+  const std::vector<double> spacing = node_spacing_at(positions);
   std::vector<std::uint8_t> held(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    spacing[i] = node_spacing_[i] * std::sqrt(positions.volume[i] / nodes_.sph_nodes.volume[i]);
     for (int a = 0; a < nodes_.dimension; ++a)
       if (conditions_->velocity_imposed(static_cast<std::int32_t>(i), a))
         held[i] |= static_cast<std::uint8_t>(1u << a);
@@ -636,11 +644,7 @@ void Assembly::spread_crowded_nodes_before_forming() {
 void Assembly::form_cells_at(const PointCloud& formation, const FieldArray& fields) {
   const auto start = std::chrono::steady_clock::now();
   Configuration& configuration = state_.configuration;
-  // Each node's spacing now: its spacing at the start stretched as its volume has (eq. 3.15), so
-  // that a body that stretches keeps its cells and a node that leaves it does not.
-  std::vector<double> spacing(node_spacing_.size());
-  for (std::size_t i = 0; i < spacing.size(); ++i)
-    spacing[i] = node_spacing_[i] * std::sqrt(formation.volume[i] / nodes_.sph_nodes.volume[i]);
+  const std::vector<double> spacing = node_spacing_at(formation);
   // No cell crosses a rigid body where it is now (§9.18).
   std::vector<std::vector<Vec3>> solids;
   for (const RigidBody& body : conditions_->rigid_bodies())

@@ -133,6 +133,8 @@ class Assembly {
   /// conditions and the step on them, its controls started from `fields`; the configuration's
   /// nodes are set to `formation`.
   void form_cells_at(const PointCloud& formation, const FieldArray& fields);
+  /// Each node's spacing at `nodes` (positions and volumes now), for eqs. 3.15 and 9.16.
+  std::vector<double> node_spacing_at(const PointCloud& nodes) const;
   /// numerics.cells.spread_below: crowded nodes moved before a forming (eq. 9.16).
   void spread_crowded_nodes_before_forming();
   /// initial_conditions.stress, on top of the geostatic stress.
