@@ -1,7 +1,7 @@
 // spread_crowded_nodes (docs/theory.md §9.19, eq. 9.16): a node closer to a neighbour than the
 // fraction of its spacing moves to the centroid of its neighbours in the cells, a surface node to
 // the midpoint of its two outline neighbours (a straight face stays straight), a held component
-// stays, and nodes that are not crowded do not move.
+// stays, nodes that are not crowded do not move, and no node is moved into a rigid body.
 #include "rktsph/geometry/crowded_nodes.hpp"
 
 #include <gtest/gtest.h>
@@ -43,8 +43,11 @@ TEST(CrowdedNodes, ACrowdedInnerNodeMovesToTheCentroidOfItsNeighbours) {
   const std::vector<std::uint8_t> held(25, 0);
   FieldArray shift(2, 25);
   const std::size_t count =
-      spread_crowded_nodes(patch.formed.cells, patch.outline, moved, spacing, 0.3, held, shift);
-  EXPECT_EQ(count, 2u);  // (2, 2) and (2, 3), each the other's crowded neighbour
+      spread_crowded_nodes(patch.formed.cells, patch.outline, moved, spacing, 0.3, held, {}, shift);
+  // (2, 2) moves first; then (2, 3), each other's crowded neighbour, is no longer crowded.
+  EXPECT_EQ(count, 1u);
+  EXPECT_EQ(shift(0, 17), 0.0);
+  EXPECT_EQ(shift(1, 17), 0.0);
   std::vector<std::int32_t> ring;
   for (std::int32_t cell : patch.formed.cells.cells_of(12))
     for (std::int32_t corner : patch.formed.cells.corners(static_cast<std::size_t>(cell)))
@@ -72,19 +75,59 @@ TEST(CrowdedNodes, ASurfaceNodeMovesAlongItsFaceAndAHeldComponentStays) {
   const std::vector<double> spacing(25, 1.0);
   std::vector<std::uint8_t> held(25, 0);
   FieldArray shift(2, 25);
-  spread_crowded_nodes(patch.formed.cells, patch.outline, moved, spacing, 0.3, held, shift);
-  // Midpoints of the outline neighbours: (1, 0)-(3, 0) and (2.95, 0)-(4, 0); the face stays y = 0.
+  spread_crowded_nodes(patch.formed.cells, patch.outline, moved, spacing, 0.3, held, {}, shift);
+  // The midpoint of its outline neighbours (1, 0)-(3, 0): the face stays y = 0, and (3, 0) is
+  // then no longer crowded.
   EXPECT_NEAR(moved.position[0][2] + shift(0, 2), 2.0, 1e-15);
-  EXPECT_NEAR(moved.position[0][3] + shift(0, 3), 3.475, 1e-15);
   EXPECT_EQ(shift(1, 2), 0.0);
-  EXPECT_EQ(shift(1, 3), 0.0);
-  held[2] = 0b01;  // x imposed at node (2, 0)
-  spread_crowded_nodes(patch.formed.cells, patch.outline, moved, spacing, 0.3, held, shift);
+  EXPECT_EQ(shift(0, 3), 0.0);
+  held[2] = 0b01;  // x imposed at node (2, 0): it stays, and (3, 0) moves off it instead, to the
+                   // midpoint of (2.95, 0)-(4, 0)
+  spread_crowded_nodes(patch.formed.cells, patch.outline, moved, spacing, 0.3, held, {}, shift);
   EXPECT_EQ(shift(0, 2), 0.0);
+  EXPECT_NEAR(moved.position[0][3] + shift(0, 3), 3.475, 1e-15);
+  EXPECT_EQ(shift(1, 3), 0.0);
   // Not crowded below the fraction: 0.05 apart is not closer than 0.04 of the spacing.
+  EXPECT_EQ(spread_crowded_nodes(patch.formed.cells, patch.outline, moved, spacing, 0.04, held, {},
+                                 shift),
+            0u);
+}
+
+TEST(CrowdedNodes, NoNodeIsMovedIntoARigidBodyNorOntoAnother) {
+  // The corner node (4, 4), crowded by (4, 3.9), held there, would move to the midpoint of its
+  // outline neighbours, (3.5, 3.95); a body there (as one the soil wraps at its corner) keeps
+  // it where it is.
+  const Patch patch = lattice_patch();
+  PointCloud moved = patch.nodes;
+  moved.position[1][19] = 3.9;
+  const std::vector<double> spacing(25, 1.0);
+  std::vector<std::uint8_t> held(25, 0);
+  held[19] = 0b11;
+  FieldArray shift(2, 25);
   EXPECT_EQ(
-      spread_crowded_nodes(patch.formed.cells, patch.outline, moved, spacing, 0.04, held, shift),
-      0u);
+      spread_crowded_nodes(patch.formed.cells, patch.outline, moved, spacing, 0.3, held, {}, shift),
+      1u);
+  EXPECT_NEAR(moved.position[0][24] + shift(0, 24), 3.5, 1e-15);
+  EXPECT_NEAR(moved.position[1][24] + shift(1, 24), 3.95, 1e-15);
+  const std::vector<std::vector<Vec3>> body = {
+      {{3.3, 3.8, 0.0}, {3.7, 3.8, 0.0}, {3.7, 4.2, 0.0}, {3.3, 4.2, 0.0}}};
+  EXPECT_EQ(spread_crowded_nodes(patch.formed.cells, patch.outline, moved, spacing, 0.3, held, body,
+                                 shift),
+            0u);
+  EXPECT_EQ(shift(0, 24), 0.0);
+  EXPECT_EQ(shift(1, 24), 0.0);
+  // Two neighbours on the base crowded on each other move one after the other: (1, 0) and (2, 0)
+  // at 1.48 and 1.52 m; (1, 0) goes to the midpoint of (0, 0) and (1.52, 0), and (2, 0), then
+  // 0.76 m from it, stays (moved at once from the old positions both would move).
+  moved = patch.nodes;
+  moved.position[0][1] = 1.48;
+  moved.position[0][2] = 1.52;
+  held.assign(25, 0);
+  EXPECT_EQ(
+      spread_crowded_nodes(patch.formed.cells, patch.outline, moved, spacing, 0.3, held, {}, shift),
+      1u);
+  EXPECT_NEAR(moved.position[0][1] + shift(0, 1), 0.76, 1e-15);
+  EXPECT_EQ(shift(0, 2), 0.0);
 }
 
 }  // namespace

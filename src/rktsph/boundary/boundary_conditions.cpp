@@ -420,11 +420,21 @@ BoundaryConditions::BoundaryConditions(
   }
   for (const BoundaryConditionSpec& condition : conditions) {
     if (condition.kind != BoundaryConditionSpec::Kind::RigidBody) continue;
-    bodies_.emplace_back(condition.body_name, condition.body_polygon, condition.body_velocity,
-                         ContactSurface{condition.wall_rough, condition.body_friction},
-                         group_nodes(groups, condition));
+    bodies_.emplace_back(
+        condition.body_name, condition.body_polygon,
+        BodyDrive{condition.body_velocity, condition.body_load, condition.body_mass.value_or(0.0)},
+        ContactSurface{condition.wall_rough, condition.body_friction},
+        group_nodes(groups, condition));
   }
   body_force_.assign(bodies_.size(), Vec3{});
+  if (std::any_of(bodies_.begin(), bodies_.end(),
+                  [](const RigidBody& body) { return body.loaded(); })) {
+    // The nodes' masses rho0 V0, exact through every forming (eq. 9.11), for the mass a loaded
+    // body's contacts hold (eq. 9.17).
+    node_mass_.resize(nodes.sph_nodes.size());
+    for (std::size_t i = 0; i < node_mass_.size(); ++i)
+      node_mass_[i] = model.density(nodes.node_material[i]) * nodes.sph_nodes.volume[i];
+  }
   update_contacts(nodes.sph_nodes, time);
 
   // Velocities: rollers, then fixed and imposed in the order written.
@@ -476,6 +486,54 @@ void BoundaryConditions::classify(SurfaceSet& surface) const {
           normal_velocity_imposed = false;
       surface.projected[i] = normal_velocity_imposed ? 0 : 1;
     }
+  }
+}
+
+void BoundaryConditions::begin_body_step(double time, double length, const Vec3& gravity) {
+  for (std::size_t b = 0; b < bodies_.size(); ++b)
+    bodies_[b].begin_step(time, length, body_force_[b], gravity, node_mass_);
+}
+
+void BoundaryConditions::end_body_step() {
+  for (RigidBody& body : bodies_)
+    body.end_step();
+}
+
+void BoundaryConditions::carry_bodies(const BoundaryConditions& earlier, double time) {
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    bodies_[b].set_motion(earlier.bodies_[b].motion());
+    body_force_[b] = earlier.body_force_[b];
+  }
+  // The contacts where the loaded bodies are, not where the constructor put them (at rest).
+  update_contacts(nodes_.sph_nodes, time);
+}
+
+void BoundaryConditions::save_bodies(CheckpointOut& out) const {
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const BodyMotion& motion = bodies_[b].motion();
+    out.put_f64(motion.start);
+    out.put_f64(motion.length);
+    const std::array<const Vec3*, 5> vectors = {&motion.displacement, &motion.velocity,
+                                                &motion.end_velocity, &motion.soil_force,
+                                                &body_force_[b]};
+    for (const Vec3* vector : vectors)
+      for (double value : *vector)
+        out.put_f64(value);
+  }
+}
+
+void BoundaryConditions::restore_bodies(CheckpointIn& in) {
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    BodyMotion motion;
+    motion.start = in.get_f64();
+    motion.length = in.get_f64();
+    const std::array<Vec3*, 5> vectors = {&motion.displacement, &motion.velocity,
+                                          &motion.end_velocity, &motion.soil_force,
+                                          &body_force_[b]};
+    for (Vec3* vector : vectors)
+      for (double& value : *vector)
+        value = in.get_f64();
+    bodies_[b].set_motion(motion);
   }
 }
 

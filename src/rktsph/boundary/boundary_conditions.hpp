@@ -17,6 +17,7 @@
 #include "rktsph/boundary/surface_set.hpp"
 #include "rktsph/boundary/surface_traction.hpp"
 #include "rktsph/case/case_description.hpp"
+#include "rktsph/core/checkpoint.hpp"
 #include "rktsph/core/field_array.hpp"
 #include "rktsph/geometry/node_sets.hpp"
 #include "rktsph/physics/physics_model.hpp"
@@ -79,6 +80,17 @@ class BoundaryConditions {
   /// The force the soil exerts on rigid body b at the last time the conditions were applied to
   /// the nodes' own rows [N per m of thickness] (docs/theory.md eq. 9.15).
   const Vec3& rigid_body_force(std::size_t b) const { return body_force_[b]; }
+
+  /// Starts and ends a step of `length` at `time` for the loaded bodies (eq. 9.17): their
+  /// acceleration over it from the soil's force measured at its start and `gravity` [m/s2].
+  void begin_body_step(double time, double length, const Vec3& gravity);
+  void end_body_step();
+  /// Takes the loaded bodies' motions and forces of the conditions these replace (a forming of
+  /// the cells), and finds the contacts at `time` where the bodies then are.
+  void carry_bodies(const BoundaryConditions& earlier, double time);
+  /// The bodies' motions and forces, for a restart (the contacts follow at the next move).
+  void save_bodies(CheckpointOut& out) const;
+  void restore_bodies(CheckpointIn& in);
 
   /// True if velocity component `axis` of `node` is imposed.
   bool velocity_imposed(std::int32_t node, int axis) const {
@@ -153,6 +165,7 @@ class BoundaryConditions {
   std::vector<std::int32_t> contact_body_;          // per node: the body it touches, or -1
   std::vector<double> contact_length_;              // per node: its share of a body's face [m]
   mutable std::vector<Vec3> body_force_;            // per body, measured by apply
+  std::vector<double> node_mass_;                   // per node [kg/m], with a loaded body
   std::array<int, 3> velocity_field_{-1, -1, -1};
   double contact_tolerance_ = 0.0;  // [m]: a node this close to a wall touches it
   double deepest_penetration_ = 0.0;

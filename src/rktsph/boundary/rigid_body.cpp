@@ -7,30 +7,85 @@
 
 namespace rktsph {
 
-RigidBody::RigidBody(std::string name, std::vector<Vec3> polygon,
-                     std::array<std::optional<TimeFunction>, 3> velocity, ContactSurface surface,
-                     std::vector<std::int32_t> nodes)
+RigidBody::RigidBody(std::string name, std::vector<Vec3> polygon, BodyDrive drive,
+                     ContactSurface surface, std::vector<std::int32_t> nodes)
     : name_(std::move(name)),
       polygon_(std::move(polygon)),
-      velocity_(std::move(velocity)),
+      drive_(std::move(drive)),
       surface_(surface),
       nodes_(std::move(nodes)),
       contact_(nodes_.size(), 0),
       normal_(nodes_.size(), Vec3{}),
       moved_polygon_(polygon_) {}
 
+bool RigidBody::loaded() const {
+  return std::any_of(drive_.load.begin(), drive_.load.end(),
+                     [](const std::optional<TimeFunction>& load) { return load.has_value(); });
+}
+
 Vec3 RigidBody::velocity(double time) const {
   Vec3 v{};
-  for (std::size_t a = 0; a < 3; ++a)
-    if (velocity_[a]) v[a] = (*velocity_[a])(time);
+  // On a loaded axis the velocity is linear over the step (eq. 9.17); before the first step
+  // (length 0) it is the initial one.
+  const double fraction = motion_.length > 0.0 ? (time - motion_.start) / motion_.length : 0.0;
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (drive_.velocity[a]) v[a] = (*drive_.velocity[a])(time);
+    if (drive_.load[a])
+      v[a] = motion_.velocity[a] + fraction * (motion_.end_velocity[a] - motion_.velocity[a]);
+  }
   return v;
 }
 
 Vec3 RigidBody::displacement(double time) const {
   Vec3 u{};
-  for (std::size_t a = 0; a < 3; ++a)
-    if (velocity_[a]) u[a] = velocity_[a]->integral(time);
+  const double elapsed = time - motion_.start;
+  const double fraction = motion_.length > 0.0 ? elapsed / motion_.length : 0.0;
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (drive_.velocity[a]) u[a] = drive_.velocity[a]->integral(time);
+    if (drive_.load[a])
+      u[a] = motion_.displacement[a] +
+             elapsed * (motion_.velocity[a] +
+                        0.5 * fraction * (motion_.end_velocity[a] - motion_.velocity[a]));
+  }
   return u;
+}
+
+void RigidBody::begin_step(double time, double length, const Vec3& soil_force, const Vec3& gravity,
+                           std::span<const double> node_mass) {
+  motion_.start = time;
+  motion_.length = length;
+  motion_.soil_force = soil_force;
+  if (!loaded()) return;
+  // Eq. 9.17: (M + m_c) dV/dt = P(t) + M g + F, explicit in the soil's force F. The nodes the
+  // contact holds move with the body along the axes it holds them on, so their mass m_c rides
+  // with it: it keeps the body's step stable whatever its own mass (a plate lighter than the row
+  // of soil under it would otherwise oscillate against that row's stiffness and grow), and at
+  // rest it changes nothing.
+  const bool slides = !surface_.friction && !surface_.rough;
+  Vec3 held_mass{};
+  for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    if (!contact_[k]) continue;
+    const double mass = node_mass[static_cast<std::size_t>(nodes_[k])];
+    for (std::size_t a = 0; a < 2; ++a)
+      held_mass[a] += slides ? mass * normal_[k][a] * normal_[k][a] : mass;
+  }
+  for (std::size_t a = 0; a < 3; ++a) {
+    motion_.end_velocity[a] = motion_.velocity[a];
+    if (!drive_.load[a]) continue;
+    const double force =
+        (*drive_.load[a])(time + 0.5 * length) + drive_.mass * gravity[a] + soil_force[a];
+    motion_.end_velocity[a] += length * force / (drive_.mass + held_mass[a]);
+  }
+}
+
+void RigidBody::end_step() {
+  if (!loaded()) return;
+  for (std::size_t a = 0; a < 3; ++a)
+    motion_.displacement[a] +=
+        0.5 * motion_.length * (motion_.velocity[a] + motion_.end_velocity[a]);
+  motion_.velocity = motion_.end_velocity;
+  motion_.start += motion_.length;
+  motion_.length = 0.0;
 }
 
 void RigidBody::place(double time, std::vector<Vec3>& polygon) const {

@@ -1,6 +1,7 @@
 // A rigid polygon in contact with the nodes of a moving body (docs/theory.md §9.18): it moves at an
-// imposed velocity; the nodes of its group that reach it may not enter it, and those pressed
-// against it move with it along its normal.
+// imposed velocity, or under an imposed load by its own equation of motion (eq. 9.17); the nodes
+// of its group that reach it may not enter it, and those pressed against it move with it along its
+// normal.
 #pragma once
 
 #include <array>
@@ -25,17 +26,47 @@ struct ContactSurface {
   std::optional<double> friction;  ///< Coulomb's mu; replaces `rough` when given
 };
 
+/// What moves a rigid body along each axis: an imposed velocity, or a load under which it moves by
+/// its own equation of motion (eq. 9.17); an axis with neither is held.
+struct BodyDrive {
+  std::array<std::optional<TimeFunction>, 3> velocity;  ///< [m/s]
+  std::array<std::optional<TimeFunction>, 3> load;      ///< besides the soil's [N/m]
+  double mass = 0.0;                                    ///< [kg/m], > 0 when loaded
+};
+
+/// A loaded body's motion over the step in progress, [start, start + length]: on its loaded axes
+/// the velocity varies linearly from `velocity` to `end_velocity` (eq. 9.17).
+struct BodyMotion {
+  double start = 0.0, length = 0.0;  ///< [s]
+  Vec3 displacement{};               ///< from t = 0, at `start` [m]
+  Vec3 velocity{}, end_velocity{};   ///< [m/s]
+  Vec3 soil_force{};  ///< the soil's force at `start`, which the step's acceleration used [N/m]
+};
+
 class RigidBody {
  public:
   /// `nodes` may touch it.
-  RigidBody(std::string name, std::vector<Vec3> polygon,
-            std::array<std::optional<TimeFunction>, 3> velocity, ContactSurface surface,
+  RigidBody(std::string name, std::vector<Vec3> polygon, BodyDrive drive, ContactSurface surface,
             std::vector<std::int32_t> nodes);
 
   const std::string& name() const { return name_; }
-  /// The body's velocity and its displacement from t = 0 at `time`.
+  /// The body's velocity and its displacement from t = 0 at `time` (on a loaded axis, a time
+  /// within the step in progress).
   Vec3 velocity(double time) const;
   Vec3 displacement(double time) const;
+  /// True when a load moves it along some axis.
+  bool loaded() const;
+  /// Starts a step of `length` at `time` (eq. 9.17): along each loaded axis the velocity at its
+  /// end from the load at mid-step, the weight under `gravity` [m/s2] and the soil's force
+  /// `soil_force` [N/m] at its start, over the body's mass and the mass its contacts hold
+  /// (`node_mass` [kg/m] per node), from which the nodes in contact cannot part along that axis.
+  void begin_step(double time, double length, const Vec3& soil_force, const Vec3& gravity,
+                  std::span<const double> node_mass);
+  /// Ends the step begun: the displacement by the trapezoidal rule, exact for the linear velocity.
+  void end_step();
+  /// The state of a loaded body's motion, to carry across a forming of the cells and a restart.
+  const BodyMotion& motion() const { return motion_; }
+  void set_motion(const BodyMotion& motion) { motion_ = motion; }
   /// Its outline at `time`.
   std::vector<Vec3> polygon_at(double time) const;
   /// Its outline where the last find_contacts placed it.
@@ -67,7 +98,8 @@ class RigidBody {
 
   std::string name_;
   std::vector<Vec3> polygon_;  // at t = 0
-  std::array<std::optional<TimeFunction>, 3> velocity_;
+  BodyDrive drive_;
+  BodyMotion motion_;
   ContactSurface surface_;
   std::vector<std::int32_t> nodes_;
   std::vector<std::uint8_t> contact_;  // per node of nodes_

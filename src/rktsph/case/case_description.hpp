@@ -99,7 +99,7 @@ struct BoundaryConditionSpec {
     PorePressure,  ///< drained face: prescribed excess pore pressure (saturated model only)
     Rotation,      ///< both velocity components of a rigid rotation about `centre` (2D only)
     RigidWall,     ///< contact with a fixed plane: no penetration; rough (no slip) or smooth
-    RigidBody,     ///< contact with a rigid polygon moving at an imposed velocity (2D)
+    RigidBody,     ///< contact with a rigid polygon at an imposed velocity or load (2D)
   };
   Kind kind = Kind::Velocity;
   std::string group;
@@ -116,6 +116,9 @@ struct BoundaryConditionSpec {
   std::string body_name;           ///< RigidBody: its name in probes.csv and summary.json
   std::vector<Vec3> body_polygon;  ///< RigidBody: its outline at t = 0 [m] (simple, 3+ vertices)
   std::array<std::optional<TimeFunction>, 3> body_velocity;  ///< RigidBody: per axis [m/s]
+  /// RigidBody: the force on it besides the soil's, per axis not in body_velocity [N/m]
+  std::array<std::optional<TimeFunction>, 3> body_load;
+  std::optional<double> body_mass;      ///< RigidBody with a load: its mass [kg/m]
   std::optional<double> body_friction;  ///< RigidBody: Coulomb coefficient (replaces `surface`)
   SourceLocation where;
 };

@@ -27,8 +27,8 @@ namespace rktsph {
 /// Bumped whenever the layout or the content of a section changes; a build reads only its own
 /// version, since a section from another version cannot be trusted to mean the same thing.
 inline constexpr std::uint32_t kCheckpointFormatVersion =
-    7;  // 2: hourglass forces; 3: configuration; 4: energy budget; 5: filter configuration;
-        // 6: cells formed again; 7: rigid bodies' force sums
+    8;  // 2: hourglass forces; 3: configuration; 4: energy budget; 5: filter configuration;
+        // 6: cells formed again; 7: rigid bodies' force sums; 8: loaded bodies' motion
 inline constexpr const char* kCheckpointFileName = "checkpoint.bin";
 
 /// FNV-1a, 64 bits: the case hash and the file checksum (no dependency beyond the standard

@@ -2,15 +2,28 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
+
+#include "rktsph/mesh/polygon_distance.hpp"
 
 namespace rktsph {
 
 namespace {
 
-double distance(const PointCloud& positions, std::size_t i, std::size_t j) {
-  return std::hypot(positions.position[0][i] - positions.position[0][j],
-                    positions.position[1][i] - positions.position[1][j]);
+// A node is not moved nearer a body than this fraction of its spacing: the contact tolerance
+// (boundary_conditions.cpp, kBodyContactTolerance), inside which it would touch it.
+constexpr double kSolidClearance = 0.02;
+
+/// The distance from (x, y) to the nearest of `neighbours` at `x_now`, `y_now`.
+double nearest_distance(double x, double y, std::span<const std::int32_t> neighbours,
+                        const std::vector<double>& x_now, const std::vector<double>& y_now) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::int32_t j : neighbours) {
+    const auto k = static_cast<std::size_t>(j);
+    nearest = std::min(nearest, std::hypot(x - x_now[k], y - y_now[k]));
+  }
+  return nearest;
 }
 
 }  // namespace
@@ -18,9 +31,13 @@ double distance(const PointCloud& positions, std::size_t i, std::size_t j) {
 std::size_t spread_crowded_nodes(const CellComplex& cells, const Outline& outline,
                                  const PointCloud& positions, std::span<const double> spacing,
                                  double fraction, std::span<const std::uint8_t> held_axes,
-                                 FieldArray& shift) {
+                                 std::span<const std::vector<Vec3>> solids, FieldArray& shift) {
   const std::size_t n = positions.size();
   std::fill(shift.data().begin(), shift.data().end(), 0.0);
+  // The nodes move one after the other, each from where the ones before it went: moved all at
+  // once from the old positions, two neighbouring surface nodes could swap onto one point (the
+  // footing under a load, t = 5.33 s, §9.19).
+  std::vector<double> x = positions.position[0], y = positions.position[1];
   std::vector<std::int32_t> neighbours;
   std::size_t moved = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -31,37 +48,44 @@ std::size_t spread_crowded_nodes(const CellComplex& cells, const Outline& outlin
     std::sort(neighbours.begin(), neighbours.end());
     neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
     if (neighbours.empty()) continue;
-    double nearest = distance(positions, i, static_cast<std::size_t>(neighbours.front()));
-    for (std::int32_t j : neighbours)
-      nearest = std::min(nearest, distance(positions, i, static_cast<std::size_t>(j)));
+    const double nearest = nearest_distance(x[i], y[i], neighbours, x, y);
     if (!(nearest < fraction * spacing[i])) continue;
     // Inside: the centroid of the neighbours; on the outline: the midpoint of the two neighbours
     // along it, so that a straight surface stays where it is.
     const std::span<const std::int32_t> facets = outline.facets_at(i);
     double target[2] = {0.0, 0.0};
     if (facets.empty()) {
-      for (std::int32_t j : neighbours)
-        for (std::size_t a = 0; a < 2; ++a)
-          target[a] += positions.position[a][static_cast<std::size_t>(j)];
-      for (double& x : target)
-        x /= static_cast<double>(neighbours.size());
+      for (std::int32_t j : neighbours) {
+        target[0] += x[static_cast<std::size_t>(j)];
+        target[1] += y[static_cast<std::size_t>(j)];
+      }
+      for (double& coordinate : target)
+        coordinate /= static_cast<double>(neighbours.size());
     } else if (facets.size() == 2) {
       for (std::int32_t f : facets) {
         const auto j = static_cast<std::size_t>(
             outline.other_node(static_cast<std::size_t>(f), static_cast<std::int32_t>(i)));
-        for (std::size_t a = 0; a < 2; ++a)
-          target[a] += 0.5 * positions.position[a][j];
+        target[0] += 0.5 * x[j];
+        target[1] += 0.5 * y[j];
       }
     } else {
       continue;
     }
-    bool moves = false;
-    for (std::size_t a = 0; a < 2; ++a) {
-      if ((held_axes[i] >> a) & 1u) continue;
-      shift(static_cast<int>(a), i) = target[a] - positions.position[a][i];
-      moves = moves || shift(static_cast<int>(a), i) != 0.0;
-    }
-    if (moves) ++moved;
+    if ((held_axes[i] >> 0) & 1u) target[0] = x[i];
+    if ((held_axes[i] >> 1) & 1u) target[1] = y[i];
+    // A move is made only if it takes the node farther from its nearest neighbour, which is what
+    // it is for; and not into a body: the midpoint of two outline neighbours either side of a
+    // body's corner lies inside it (§9.18).
+    if (!(nearest_distance(target[0], target[1], neighbours, x, y) > nearest)) continue;
+    const bool into_solid = std::any_of(solids.begin(), solids.end(), [&](const auto& solid) {
+      return polygon_distance(solid, target[0], target[1]).depth > -kSolidClearance * spacing[i];
+    });
+    if (into_solid) continue;
+    x[i] = target[0];
+    y[i] = target[1];
+    shift(0, i) = x[i] - positions.position[0][i];
+    shift(1, i) = y[i] - positions.position[1][i];
+    ++moved;
   }
   return moved;
 }

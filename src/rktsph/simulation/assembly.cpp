@@ -615,6 +615,13 @@ std::vector<double> Assembly::node_spacing_at(const PointCloud& nodes) const {
   return spacing;
 }
 
+std::vector<std::vector<Vec3>> Assembly::rigid_bodies_now() const {
+  std::vector<std::vector<Vec3>> solids;
+  for (const RigidBody& body : conditions_->rigid_bodies())
+    solids.push_back(body.polygon_at(state_.time));
+  return solids;
+}
+
 void Assembly::spread_crowded_nodes_before_forming() {
   // Eq. 9.16: a node crowded against a neighbour moves, its fields with it unchanged; its
   // displacement takes the move, so that x = X + u still holds.
@@ -630,8 +637,9 @@ void Assembly::spread_crowded_nodes_before_forming() {
         held[i] |= static_cast<std::uint8_t>(1u << a);
   }
   FieldArray shift(nodes_.dimension, n);
-  forming_.nodes_spread += static_cast<long>(spread_crowded_nodes(
-      formed_->cells, formed_->outline, positions, spacing, fraction, held, shift));
+  forming_.nodes_spread +=
+      static_cast<long>(spread_crowded_nodes(formed_->cells, formed_->outline, positions, spacing,
+                                             fraction, held, rigid_bodies_now(), shift));
   for (int a = 0; a < nodes_.dimension; ++a) {
     const auto axis = static_cast<std::size_t>(a);
     for (std::size_t i = 0; i < n; ++i) {
@@ -646,9 +654,7 @@ void Assembly::form_cells_at(const PointCloud& formation, const FieldArray& fiel
   Configuration& configuration = state_.configuration;
   const std::vector<double> spacing = node_spacing_at(formation);
   // No cell crosses a rigid body where it is now (§9.18).
-  std::vector<std::vector<Vec3>> solids;
-  for (const RigidBody& body : conditions_->rigid_bodies())
-    solids.push_back(body.polygon_at(state_.time));
+  const std::vector<std::vector<Vec3>> solids = rigid_bodies_now();
   FormedNodeSets made =
       form_node_sets(nodes_, formation, spacing, description_.numerics.reform_alpha, solids);
   refuse_isolated_nodes(made, state_, description_.numerics.reform_alpha);
@@ -706,11 +712,20 @@ void Assembly::form_cells_at(const PointCloud& formation, const FieldArray& fiel
   }
   step->set_initial_state(at_forming);
   formation_fields_ = std::move(at_forming.fields);
+  conditions->carry_bodies(*conditions_, state_.time);
   step_ = std::move(step);  // before the conditions and cells it refers to are replaced
   conditions_ = std::move(conditions);
   formed_ = std::move(formed);
+  // The configuration as a step leaves it (volumes, faces, contacts from the displacement), which
+  // is also what a restart from a checkpoint written now places.
+  step_->follow_state(state_);
   forming_.seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void Assembly::begin_body_step(double length) {
+  const std::array<double, 3> gravity = model_->body_force(state_.time + 0.5 * length);
+  conditions_->begin_body_step(state_.time, length, gravity);
 }
 
 void Assembly::save_cell_forming(CheckpointOut& out) const {

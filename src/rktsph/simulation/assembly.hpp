@@ -112,6 +112,13 @@ class Assembly {
   const PhysicsModel& model() const { return *model_; }
   const RegisteredModel& registered_model() const { return *registered_; }
   const BoundaryConditions& boundary_conditions() const { return *conditions_; }
+  /// Around each step (or part of one) of `length`: the loaded rigid bodies' own motion over it
+  /// (docs/theory.md eq. 9.17), under the case's gravity at mid-step.
+  void begin_body_step(double length);
+  void end_body_step() { conditions_->end_body_step(); }
+  /// The rigid bodies' motions, for a restart (before the configuration follows the state).
+  void save_bodies(CheckpointOut& out) const { conditions_->save_bodies(out); }
+  void restore_bodies(CheckpointIn& in) { conditions_->restore_bodies(in); }
   const RkTaylorStep& step() const { return *step_; }
   RkTaylorStep& step() { return *step_; }
   const State& state() const { return state_; }
@@ -135,6 +142,8 @@ class Assembly {
   void form_cells_at(const PointCloud& formation, const FieldArray& fields);
   /// Each node's spacing at `nodes` (positions and volumes now), for eqs. 3.15 and 9.16.
   std::vector<double> node_spacing_at(const PointCloud& nodes) const;
+  /// The rigid bodies' outlines now: no formed cell crosses them, no spread node enters them.
+  std::vector<std::vector<Vec3>> rigid_bodies_now() const;
   /// numerics.cells.spread_below: crowded nodes moved before a forming (eq. 9.16).
   void spread_crowded_nodes_before_forming();
   /// initial_conditions.stress, on top of the geostatic stress.

@@ -111,18 +111,27 @@ void Simulation::keep_state_before_step() {
     before_step_.configuration = now.configuration;
 }
 
+void Simulation::advance_part(double dt) {
+  // A loaded rigid body moves over the step by its own equation of motion (docs/theory.md eq.
+  // 9.17), from the soil's force at the step's start; the step's conditions then hold the nodes
+  // in contact to that motion.
+  assembly_.begin_body_step(dt);
+  step().advance(state(), dt);
+  assembly_.end_body_step();
+}
+
 void Simulation::advance_in_parts(double dt) {
   // One step of the loop, in equal parts where formed cells are narrower than the width that set
   // dt (§9.17); the state counts it as one step and ends it at t + dt to the bit.
   const int parts = assembly_.step_parts();
   if (parts == 1) {
-    step().advance(state(), dt);
+    advance_part(dt);
     return;
   }
   const double end = state().time + dt;
   const long step_index = state().step;
   for (int k = 0; k < parts; ++k)
-    step().advance(state(), dt / parts);
+    advance_part(dt / parts);
   state().time = end;
   state().step = step_index + 1;
   assembly_.count_divided_step(parts);
@@ -219,6 +228,7 @@ void Simulation::save_checkpoint(CheckpointOut& out) const {
     out.put_fields(*array);
   assembly_.save_cell_forming(out);
   save_configuration(out, state().configuration);
+  assembly_.save_bodies(out);
   assembly_.step().save_checkpoint(out);
   if (assembly_.projection()) assembly_.projection()->save_checkpoint(out);
 }
@@ -232,8 +242,9 @@ void Simulation::restore_checkpoint(CheckpointIn& in) {
     in.get_fields_into(*array);
   assembly_.restore_cell_forming(in);  // before the configuration, whose sizes it sets
   restore_configuration(in, state().configuration);
+  assembly_.restore_bodies(in);  // before the configuration finds their contacts
   assembly_.step().restore_checkpoint(in);
-  assembly_.step().follow_restored_state(state());
+  assembly_.step().follow_state(state());
   if (assembly_.projection()) assembly_.projection()->restore_checkpoint(in);
   resumed_ = true;
 }

@@ -137,6 +137,8 @@ class Simulation final : public Checkpointed {
   /// the message, when that fails.
   bool form_cells_if_distorted();
   /// Advances one step of length dt, in Assembly::step_parts() equal parts.
+  /// One step, or part of one, of `dt`, with the loaded rigid bodies' motion over it.
+  void advance_part(double dt);
   void advance_in_parts(double dt);
   State before_step_;  ///< the state before the current step (state_before_stop)
   bool stopped_in_step_ = false;

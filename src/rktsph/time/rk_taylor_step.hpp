@@ -104,10 +104,11 @@ class RkTaylorStep {
   /// nothing otherwise): a restart searches again from it and gets the same stencils and filter.
   void save_checkpoint(CheckpointOut& out) const;
   void restore_checkpoint(CheckpointIn& in);
-  /// After a restore: the moving configuration placed from the restored displacement again, so
-  /// that the cells' quality, which decides when they are formed again and in how many parts a
-  /// step is taken (docs/theory.md §9.17), is the run's.
-  void follow_restored_state(State& state) { configuration_->after_step(state); }
+  /// The moving configuration and its faces placed from the state's displacement, as after a
+  /// step: after a restore, so that the cells' quality, which decides when they are formed again
+  /// and in how many parts a step is taken (docs/theory.md §9.17), is the run's; and after a
+  /// forming, so that a run restarted there continues as it does.
+  void follow_state(State& state) { configuration_->after_step(state); }
   /// The motion of the configuration (policy CurrentConfiguration), or null.
   const ConfigurationMotion* motion() const { return configuration_->motion(); }
 

@@ -1,5 +1,7 @@
 // The `boundary_conditions` section: a list of conditions, each on a group and of exactly one kind
 // (docs/input-reference.md, "boundary_conditions").
+#include <fmt/format.h>
+
 #include "rktsph/case/sections/sections.hpp"
 #include "rktsph/case/sections/value_readers.hpp"
 #include "rktsph/core/axes.hpp"
@@ -115,7 +117,9 @@ const KeyTable<Condition>& rigid_body_keys() {
           }},
       Key<Condition>{
           "velocity", "map of components", "m/s", "still", "keys x, y; each a time function",
-          "The body's imposed velocity (a translation); components left out are 0.", false,
+          "The body's imposed velocity (a translation); components left out, and not loaded, "
+          "are 0.",
+          false,
           [](const YamlNode& node, Condition& condition, Reading& reading) {
             condition.body_velocity = read_components(node, reading.so_far.dimension);
           },
@@ -124,6 +128,25 @@ const KeyTable<Condition>& rigid_body_keys() {
             out << YAML::Key << "velocity" << YAML::Value;
             emit_components(out, condition.body_velocity, description.dimension);
           }},
+      Key<Condition>{
+          "load", "map of components", "N/m", "none", "keys x, y; each a time function",
+          "The force on the body besides the soil's, per metre of thickness, on the axes it "
+          "gives: the body moves along them under that force, the soil's reaction and its weight "
+          "(its own equation of motion, docs/theory.md eq. 9.17). Not on an axis of `velocity`; "
+          "needs `mass`.",
+          false,
+          [](const YamlNode& node, Condition& condition, Reading& reading) {
+            condition.body_load = read_components(node, reading.so_far.dimension);
+          },
+          [](YAML::Emitter& out, const Condition& condition, const CaseDescription& description) {
+            if (!condition.body_load[0] && !condition.body_load[1]) return;
+            out << YAML::Key << "load" << YAML::Value;
+            emit_components(out, condition.body_load, description.dimension);
+          }},
+      optional_number_key<Condition>(
+          "mass", &Condition::body_mass, NumberRange::positive(), "kg/m", "required with load",
+          "The body's mass per metre of thickness: its inertia under `load`, and its weight "
+          "under the case's gravity. Only with `load`."),
       choice_key<Condition, bool>("surface", &Condition::wall_rough,
                                   {{"rough", true}, {"smooth", false}},
                                   "rough: a node in contact moves with the body along its "
@@ -137,6 +160,21 @@ const KeyTable<Condition>& rigid_body_keys() {
   return keys;
 }
 
+/// Each axis of a rigid body is driven by a velocity or a load, not both; a load needs a mass to
+/// move, and a mass means nothing without one (docs/theory.md §9.18).
+void check_body_motion(const YamlMap& map, const Condition& condition) {
+  const YamlNode* load = map.find("load");
+  for (std::size_t a = 0; a < 2; ++a)
+    if (condition.body_load[a] && condition.body_velocity[a])
+      fail_at(*load, fmt::format("the body's {} motion is both imposed and loaded", "xy"[a]),
+              "each axis in one of `velocity` and `load`", true);
+  if (load != nullptr && !condition.body_mass)
+    fail_at(*load, "a loaded body needs its mass to move", "mass: the body's mass in kg/m", true);
+  if (load == nullptr && condition.body_mass)
+    fail_at(*map.find("mass"), "a body's mass acts only under a load",
+            "load: {y: ...} with the mass, or no mass", true);
+}
+
 void read_rigid_body(const YamlNode& node, Condition& condition, Reading& reading) {
   reject_unless_2d(node, reading.so_far.dimension, "'rigid_body' conditions are");
   condition.kind = Condition::Kind::RigidBody;
@@ -145,6 +183,7 @@ void read_rigid_body(const YamlNode& node, Condition& condition, Reading& readin
     fail_at(*map.find("friction"), "'friction' and 'surface' both say how the body holds a node",
             "one of them: surface: rough | smooth, or friction: mu (Coulomb)", true);
   read_keys(node, rigid_body_keys(), condition, reading);
+  check_body_motion(map, condition);
 }
 
 /// Writes `name: value` when the condition is of `kind`.
@@ -241,10 +280,10 @@ const KeyTable<Condition>& condition_keys() {
           }),
       section_key<Condition>(
           "rigid_body", "map", "one kind",
-          "2D only; keys name, polygon, velocity, surface or friction",
-          "A rigid polygon moving at an imposed velocity that the group's nodes cannot enter "
-          "(contact as rigid_wall, or Coulomb friction); the force the nodes exert on it is "
-          "written to probes.csv.",
+          "2D only; keys name, polygon, velocity, load, mass, surface or friction",
+          "A rigid polygon moving at an imposed velocity, or under a load by its own equation of "
+          "motion, that the group's nodes cannot enter (contact as rigid_wall, or Coulomb "
+          "friction); the force the nodes exert on it is written to probes.csv.",
           read_rigid_body,
           [](YAML::Emitter& out, const Condition& condition, const CaseDescription& description) {
             if (condition.kind != Condition::Kind::RigidBody) return;
