@@ -6,6 +6,7 @@
 // a restart with it, and its input errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -258,7 +259,13 @@ TEST(RigidBody, ALoadedPlateSettlesByTheOedometricComplianceOfTheColumn) {
     std::string text = loaded_column(mass);
     text.replace(text.find("time: {end: 2.0}"), 16, "time: {end: 3.0}");
     Simulation simulation(read_case_text(text, "column.yaml"));
-    ASSERT_EQ(simulation.run(), RunStatus::Completed) << mass << ": " << simulation.message();
+    // No node ends a step inside the plate by more than the contact tolerance, 0.02 dx (§9.18).
+    double deepest = 0.0;
+    while (simulation.state().step < simulation.total_steps()) {
+      simulation.take_step();
+      deepest = std::max(deepest, simulation.boundary_conditions().deepest_penetration());
+    }
+    EXPECT_LE(deepest, 0.02 * 0.25) << mass;
     const BoundaryConditions& conditions = simulation.boundary_conditions();
     const RigidBody& plate = conditions.rigid_bodies()[0];
     EXPECT_NEAR(plate.displacement(3.0)[1], -0.002, 0.015 * 0.002) << mass;
