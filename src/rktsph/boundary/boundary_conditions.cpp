@@ -513,9 +513,8 @@ void BoundaryConditions::save_bodies(CheckpointOut& out) const {
     const BodyMotion& motion = bodies_[b].motion();
     out.put_f64(motion.start);
     out.put_f64(motion.length);
-    const std::array<const Vec3*, 5> vectors = {&motion.displacement, &motion.velocity,
-                                                &motion.end_velocity, &motion.soil_force,
-                                                &body_force_[b]};
+    const std::array<const Vec3*, 4> vectors = {&motion.displacement, &motion.velocity,
+                                                &motion.end_velocity, &body_force_[b]};
     for (const Vec3* vector : vectors)
       for (double value : *vector)
         out.put_f64(value);
@@ -527,9 +526,8 @@ void BoundaryConditions::restore_bodies(CheckpointIn& in) {
     BodyMotion motion;
     motion.start = in.get_f64();
     motion.length = in.get_f64();
-    const std::array<Vec3*, 5> vectors = {&motion.displacement, &motion.velocity,
-                                          &motion.end_velocity, &motion.soil_force,
-                                          &body_force_[b]};
+    const std::array<Vec3*, 4> vectors = {&motion.displacement, &motion.velocity,
+                                          &motion.end_velocity, &body_force_[b]};
     for (Vec3* vector : vectors)
       for (double& value : *vector)
         value = in.get_f64();

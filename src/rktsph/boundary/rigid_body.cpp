@@ -54,7 +54,6 @@ void RigidBody::begin_step(double time, double length, const Vec3& soil_force, c
                            std::span<const double> node_mass) {
   motion_.start = time;
   motion_.length = length;
-  motion_.soil_force = soil_force;
   if (!loaded()) return;
   // Eq. 9.17: (M + m_c) dV/dt = P(t) + M g + F, explicit in the soil's force F. The nodes the
   // contact holds move with the body along the axes it holds them on, so their mass m_c rides

@@ -40,7 +40,6 @@ struct BodyMotion {
   double start = 0.0, length = 0.0;  ///< [s]
   Vec3 displacement{};               ///< from t = 0, at `start` [m]
   Vec3 velocity{}, end_velocity{};   ///< [m/s]
-  Vec3 soil_force{};  ///< the soil's force at `start`, which the step's acceleration used [N/m]
 };
 
 class RigidBody {

@@ -136,9 +136,9 @@ class Simulation final : public Checkpointed {
   /// Forms the cells again where they have distorted (Assembly::cells_need_forming); false, with
   /// the message, when that fails.
   bool form_cells_if_distorted();
-  /// Advances one step of length dt, in Assembly::step_parts() equal parts.
   /// One step, or part of one, of `dt`, with the loaded rigid bodies' motion over it.
   void advance_part(double dt);
+  /// Advances one step of length dt, in Assembly::step_parts() equal parts.
   void advance_in_parts(double dt);
   State before_step_;  ///< the state before the current step (state_before_stop)
   bool stopped_in_step_ = false;
