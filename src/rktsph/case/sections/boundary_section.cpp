@@ -86,6 +86,28 @@ void read_rigid_wall(const YamlNode& node, Condition& condition, Reading& readin
   read_keys(node, rigid_wall_keys(), condition, reading);
 }
 
+/// A rigid body's per-axis time functions (its velocity, its load): x, y components.
+Key<Condition> body_components_key(const char* name,
+                                   std::array<std::optional<TimeFunction>, 3> Condition::*member,
+                                   const char* unit, const char* default_value, const char* doc) {
+  return Key<Condition>{name,
+                        "map of components",
+                        unit,
+                        default_value,
+                        "keys x, y; each a time function",
+                        doc,
+                        false,
+                        [member](const YamlNode& node, Condition& condition, Reading& reading) {
+                          condition.*member = read_components(node, reading.so_far.dimension);
+                        },
+                        [member, name](YAML::Emitter& out, const Condition& condition,
+                                       const CaseDescription& description) {
+                          if (!(condition.*member)[0] && !(condition.*member)[1]) return;
+                          out << YAML::Key << name << YAML::Value;
+                          emit_components(out, condition.*member, description.dimension);
+                        }};
+}
+
 /// The keys of a `rigid_body` condition's map (docs/theory.md §9.18).
 const KeyTable<Condition>& rigid_body_keys() {
   static const KeyTable<Condition> keys = {
@@ -115,34 +137,15 @@ const KeyTable<Condition>& rigid_body_keys() {
               emit_vector(out, vertex, description.dimension);
             out << YAML::EndSeq;
           }},
-      Key<Condition>{
-          "velocity", "map of components", "m/s", "still", "keys x, y; each a time function",
-          "The body's imposed velocity (a translation); components left out, and not loaded, "
-          "are 0.",
-          false,
-          [](const YamlNode& node, Condition& condition, Reading& reading) {
-            condition.body_velocity = read_components(node, reading.so_far.dimension);
-          },
-          [](YAML::Emitter& out, const Condition& condition, const CaseDescription& description) {
-            if (!condition.body_velocity[0] && !condition.body_velocity[1]) return;
-            out << YAML::Key << "velocity" << YAML::Value;
-            emit_components(out, condition.body_velocity, description.dimension);
-          }},
-      Key<Condition>{
-          "load", "map of components", "N/m", "none", "keys x, y; each a time function",
+      body_components_key("velocity", &Condition::body_velocity, "m/s", "still",
+                          "The body's imposed velocity (a translation); components left out, "
+                          "and not loaded, are 0."),
+      body_components_key(
+          "load", &Condition::body_load, "N/m", "none",
           "The force on the body besides the soil's, per metre of thickness, on the axes it "
           "gives: the body moves along them under that force, the soil's reaction and its weight "
           "(its own equation of motion, docs/theory.md eq. 9.17). Not on an axis of `velocity`; "
-          "needs `mass`.",
-          false,
-          [](const YamlNode& node, Condition& condition, Reading& reading) {
-            condition.body_load = read_components(node, reading.so_far.dimension);
-          },
-          [](YAML::Emitter& out, const Condition& condition, const CaseDescription& description) {
-            if (!condition.body_load[0] && !condition.body_load[1]) return;
-            out << YAML::Key << "load" << YAML::Value;
-            emit_components(out, condition.body_load, description.dimension);
-          }},
+          "needs `mass`."),
       optional_number_key<Condition>(
           "mass", &Condition::body_mass, NumberRange::positive(), "kg/m", "required with load",
           "The body's mass per metre of thickness: its inertia under `load`, and its weight "
